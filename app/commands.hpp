@@ -1,0 +1,15 @@
+#pragma once
+// Each `slambox` subcommand registers itself on the CLI11 app; main() calls these.
+#include <CLI/CLI.hpp>
+
+namespace slambox {
+
+void AddScenarioCommands(CLI::App& app);   // scenarios, scenario show, algorithms
+void AddSimulateCommand(CLI::App& app);    // simulate
+void AddRunCommand(CLI::App& app);         // run
+void AddEvalCommand(CLI::App& app);        // eval
+void AddReportCommand(CLI::App& app);      // report
+void AddOptimizeCommand(CLI::App& app);    // optimize
+void AddSweepCommand(CLI::App& app);       // sweep
+
+}  // namespace slambox

@@ -1,0 +1,28 @@
+#include "app/registry.hpp"
+
+#include "core/error.hpp"
+#include "slam/dead_reckoning.hpp"
+
+namespace slambox {
+
+const std::vector<ModuleInfo>& AllModules() {
+  static const std::vector<ModuleInfo> modules = {
+      DeadReckoningModule(),
+  };
+  return modules;
+}
+
+const ModuleInfo& FindModule(const std::string& name) {
+  for (const auto& m : AllModules())
+    if (m.name == name) return m;
+  std::string names;
+  for (const auto& m : AllModules()) names += (names.empty() ? "" : ", ") + m.name;
+  throw InputError("--algo", 0, "unknown algorithm '" + name + "'", "use one of: " + names + ", or all");
+}
+
+bool SensorsAllow(const ModuleInfo& module, const SensorSuite& sensors) {
+  return (!module.needs.odometry || sensors.odometry) && (!module.needs.lidar || sensors.lidar) &&
+         (!module.needs.landmarks || sensors.landmarks);
+}
+
+}  // namespace slambox

@@ -1,0 +1,30 @@
+#pragma once
+// Bad user input (scenario, stream, graph, flag) is reported by throwing InputError.
+// Its message names the file, the line (0 = unknown / whole file), what is wrong and the
+// fix; the CLI prints it and exits non-zero. Bugs are asserts, not InputErrors.
+#include <stdexcept>
+#include <string>
+
+namespace slambox {
+
+class InputError : public std::runtime_error {
+ public:
+  InputError(const std::string& file, int line, const std::string& problem, const std::string& fix)
+      : std::runtime_error(Format(file, line, problem, fix)), file_(file), line_(line) {}
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+
+ private:
+  static std::string Format(const std::string& file, int line, const std::string& problem,
+                            const std::string& fix) {
+    std::string where = file.empty() ? std::string("<input>") : file;
+    if (line > 0) where += ":" + std::to_string(line);
+    std::string msg = where + ": " + problem;
+    if (!fix.empty()) msg += "\n  fix: " + fix;
+    return msg;
+  }
+  std::string file_;
+  int line_;
+};
+
+}  // namespace slambox

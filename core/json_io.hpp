@@ -1,0 +1,20 @@
+#pragma once
+// JSON forms of the plain result types, so a run folder can be re-read by `slambox
+// report` and drawn without re-running anything. Non-finite numbers become null.
+#include <nlohmann/json.hpp>
+
+#include "core/estimate.hpp"
+#include "core/stream.hpp"
+#include "core/world.hpp"
+
+namespace slambox {
+
+nlohmann::json ToJson(const SE2& pose);          ///< [x, y, theta_rad]
+SE2 SE2FromJson(const nlohmann::json& j);
+nlohmann::json ToJson(const World& world);
+World WorldFromJson(const nlohmann::json& j);
+nlohmann::json ToJson(const Estimate& estimate);
+Estimate EstimateFromJson(const nlohmann::json& j);
+nlohmann::json ToJson(const SensorSuite& sensors);
+
+}  // namespace slambox
