@@ -4,6 +4,12 @@
 
 namespace slambox {
 
+/// Thrown by a command that must end with a non-zero exit after printing its own
+/// message (e.g. a failed regression check); main() returns `code`.
+struct CommandExit {
+  int code = 1;
+};
+
 void AddScenarioCommands(CLI::App& app);   // scenarios, scenario show, algorithms
 void AddSimulateCommand(CLI::App& app);    // simulate
 void AddRunCommand(CLI::App& app);         // run

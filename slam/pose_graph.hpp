@@ -1,0 +1,55 @@
+#pragma once
+// 2D pose graph and its solution with Ceres (x, y and yaw; yaw on an angle manifold;
+// the anchor pose held constant). Error of an edge, g2o's convention:
+//   e = [R_i^T (t_j - t_i) - t_ij ; wrap(theta_j - theta_i - theta_ij)],  chi2 = sum e^T Omega e.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/se2.hpp"
+
+namespace slambox {
+
+struct PoseGraphEdge {
+  int from = 0;
+  int to = 0;
+  SE2 T_from_to;  ///< measured pose of `to` in `from`'s frame
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  ///< over (dx [m], dy [m], dtheta [rad])
+  bool loop_closure = false;  ///< the robust kernel applies to loop-closure edges only
+};
+
+struct PoseGraph {
+  std::vector<SE2> poses;  ///< T_world_node, the initial guess on input, the solution on output
+  std::vector<PoseGraphEdge> edges;
+  int anchor = 0;  ///< the pose held fixed (gauge)
+};
+
+enum class RobustKernel { kNone, kHuber, kCauchy, kDcs };
+
+struct PoseGraphSolveOptions {
+  RobustKernel loop_kernel = RobustKernel::kNone;
+  double kernel_scale = 1.0;  ///< Huber/Cauchy scale on the whitened residual; DCS's Phi
+  int max_iterations = 100;
+  int num_threads = 1;
+};
+
+struct PoseGraphSolveResult {
+  double chi2_initial = 0.0;  ///< at the input poses, no robust kernel
+  double chi2_final = 0.0;    ///< at the solution, no robust kernel
+  int iterations = 0;
+  double time_s = 0.0;
+  std::string termination;  ///< Ceres' termination type ("CONVERGENCE", "NO_CONVERGENCE", ...)
+  bool usable = false;      ///< Ceres' Summary::IsSolutionUsable()
+  /// Per edge: the weight the robust kernel gave it at the solution (1 = full trust).
+  std::vector<double> edge_weights;
+};
+
+/// The edge error e above for poses T_i, T_j and measurement T_ij.
+Eigen::Vector3d EdgeError(const SE2& T_i, const SE2& T_j, const SE2& T_ij);
+double Chi2(const PoseGraph& graph);
+
+/// Solves in place. Throws InputError for an edge naming a missing pose or a
+/// non-positive-definite information matrix.
+PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOptions& options = {});
+
+}  // namespace slambox
