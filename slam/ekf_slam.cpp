@@ -7,7 +7,7 @@ namespace slambox {
 
 void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("association", c.association, {"auto", "known", "nn", "jcbb"},
-         "data association: auto (known ids if the sensor has them, else nn), known, nn, jcbb");
+         "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");
   b.Bind("gate_accept_chi2", c.gate_accept_chi2, "chi2", "accept the nearest landmark if its d^2 is below");
   b.Bind("gate_new_chi2", c.gate_new_chi2, "chi2", "new landmark if every d^2 is above (ambiguous in between)");
   b.Bind("jcbb_joint_probability", c.jcbb_joint_probability, "-", "JCBB joint compatibility confidence");
@@ -80,8 +80,8 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
                                config_.jcbb_max_nodes};
   std::vector<int> target;
   if (known_ids_) target = AssociateKnownIds(obs);
-  else if (config_.association == "jcbb") target = AssociateJcbb(state_, z, R_, gates).landmark;
-  else target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
+  else if (config_.association == "nn") target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
+  else target = AssociateJcbb(state_, z, R_, gates).landmark;
 
   // One batched update with every matched observation, linearized at the current
   // estimate, or for FEJ at the robot's prior and the landmark's first estimate.

@@ -17,7 +17,7 @@
 namespace slambox {
 
 struct EkfSlamConfig {
-  /// "auto": known ids if the sensor reports them, else nearest neighbour; or "known", "nn", "jcbb".
+  /// "auto": known ids if the sensor reports them, else JCBB; or "known", "nn", "jcbb".
   std::string association = "auto";
   double gate_accept_chi2 = 9.21;       ///< [chi2, 2 dof] accept the nearest landmark below this d^2
   double gate_new_chi2 = 25.0;          ///< [chi2, 2 dof] new landmark if every d^2 is above this

@@ -18,7 +18,8 @@ void PredictState(EkfSlamState& s, const SE2& predicted_pose, const Eigen::Matri
   const Eigen::Index map_dim = s.mean.size() - 3;
   s.mean.head<3>() = predicted_pose.vector();
   const Eigen::Matrix3d P_rr = s.covariance.topLeftCorner<3, 3>();
-  s.covariance.topLeftCorner<3, 3>() = J * P_rr * J.transpose() + Q_pose;
+  const Eigen::Matrix3d P_rr_new = J * P_rr * J.transpose() + Q_pose;
+  s.covariance.topLeftCorner<3, 3>() = 0.5 * (P_rr_new + P_rr_new.transpose());
   if (map_dim > 0) {  // the 3 x 2n robot-map rows, O(n)
     const Eigen::MatrixXd P_rm = J * s.covariance.topRightCorner(3, map_dim);
     s.covariance.topRightCorner(3, map_dim) = P_rm;
@@ -35,9 +36,10 @@ int AddLandmark(EkfSlamState& s, const Eigen::Vector2d& z, const Eigen::Matrix2d
   const Eigen::MatrixXd P_m_all = init.J_landmark_pose * s.covariance.topLeftCorner(3, n);  // 2 x n
   s.covariance.bottomLeftCorner(2, n) = P_m_all;
   s.covariance.topRightCorner(n, 2) = P_m_all.transpose();
-  s.covariance.bottomRightCorner<2, 2>() =
+  const Eigen::Matrix2d P_mm =
       init.J_landmark_pose * s.covariance.topLeftCorner<3, 3>() * init.J_landmark_pose.transpose() +
       init.J_landmark_z * R * init.J_landmark_z.transpose();
+  s.covariance.bottomRightCorner<2, 2>() = 0.5 * (P_mm + P_mm.transpose());
   return s.NumLandmarks() - 1;
 }
 
