@@ -28,6 +28,25 @@ TEST(OdometryModel, ComposeInvertsDecompose) {
   EXPECT_NEAR(spin.rot2, 0.3, 1e-15);
 }
 
+TEST(OdometryModel, DecomposeSignedReadsBackwardMotion) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int i = 0; i < 200; ++i) {
+    const SE2 delta(u(rng), u(rng), u(rng));
+    const OdometryIncrement s = DecomposeSigned(delta);
+    EXPECT_LE(std::abs(s.rot1), M_PI / 2 + 1e-12);
+    EXPECT_NEAR(Diff(Compose(s), delta).norm(), 0.0, 1e-12);
+    EXPECT_EQ(s.trans < 0, delta.x < 0);
+  }
+  // A turn in place with a tiny backward slip: Decompose says rot1 = pi, the signed one 0.
+  const SE2 slip(-1e-3, 0.0, 0.02);
+  EXPECT_NEAR(std::abs(Decompose(slip).rot1), M_PI, 1e-12);
+  const OdometryIncrement s = DecomposeSigned(slip);
+  EXPECT_NEAR(s.rot1, 0.0, 1e-15);
+  EXPECT_NEAR(s.trans, -1e-3, 1e-15);
+  EXPECT_NEAR(s.rot2, 0.02, 1e-15);
+}
+
 TEST(OdometryModel, JacobiansMatchFiniteDifferencesIncludingNearPi) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-2.0, 2.0), eps(-1e-3, 1e-3);
@@ -35,7 +54,7 @@ TEST(OdometryModel, JacobiansMatchFiniteDifferencesIncludingNearPi) {
     // A third of the cases sit near the +-pi seam of the heading.
     const double theta = i % 3 == 0 ? M_PI + eps(rng) : i % 3 == 1 ? -M_PI + eps(rng) : u(rng);
     const SE2 pose(u(rng), u(rng), theta);
-    const OdometryIncrement inc{0.5 * u(rng), std::abs(u(rng)), 0.5 * u(rng)};
+    const OdometryIncrement inc{0.5 * u(rng), u(rng), 0.5 * u(rng)};  // trans < 0: backwards
     const MotionPrediction p = PredictMotion(pose, inc);
     for (int k = 0; k < 3; ++k) {
       Eigen::Vector3d d = Eigen::Vector3d::Zero();

@@ -104,9 +104,9 @@ TEST(EkfSlam, CovarianceStaysSymmetricPsdOverALongRun) {
 }
 
 TEST(EkfSlam, ConsistentOnShortRuns) {
-  // ANEES over 10 seeds of one lap: the 95% two-sided band of the mean of 10 * K
-  // chi2(3) samples is wide for correlated samples, so test the per-seed time average
-  // against a generous bound that an inconsistent (overconfident) filter exceeds.
+  // ANEES over 10 one-lap runs. The time average of one run has a spread of about 1.5
+  // (measured over 40 seeds: EKF mean 3.2, FEJ 3.1, std 1.5; a run's errors are
+  // correlated in time), so the mean of 10 runs lies in 3 +- 1.5 (3 sigma) if consistent.
   const World world = LandmarkWorld();
   for (bool fej : {false, true}) {
     double sum = 0.0;
@@ -115,7 +115,7 @@ TEST(EkfSlam, ConsistentOnShortRuns) {
       const Stream stream = MakeSyntheticStream(LandmarkOptions(seed, 1), world);
       for (double n : testing::PoseNees(stream, RunEkf(stream, {.fej = fej}))) sum += n, ++count;
     }
-    EXPECT_LT(sum / count, 4.0);
+    EXPECT_LT(sum / count, 4.5);
     EXPECT_GT(sum / count, 1.5);
   }
 }

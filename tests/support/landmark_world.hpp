@@ -3,6 +3,7 @@
 // 10 m square path of synthetic_stream.hpp, and trajectory error / NEES against the
 // stream's ground truth (matched by time: every estimate time is a simulator step).
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <cmath>
 #include <vector>
 

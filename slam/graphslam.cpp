@@ -1,0 +1,166 @@
+#include "slam/graphslam.hpp"
+
+#include "core/odometry_model.hpp"
+#include "slam/range_bearing.hpp"
+
+namespace slambox {
+
+void BindParams(GraphSlamConfig& c, ParamBinder& b) {
+  b.Bind("keyframe_every_odometry", c.keyframe_every_odometry, "steps",
+         "a landmark scan makes a keyframe after this many odometry steps (0 = off)");
+  b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m",
+         "... or after this much travel (0 = off; both off = every scan)");
+  b.Bind("solve_every_keyframes", c.solve_every_keyframes, "keyframes", "also solve during the run (0 = at the end)");
+  b.Bind("max_iterations", c.max_iterations, "-", "Ceres iterations per solve");
+  b.Bind("compute_covariance", c.compute_covariance, "-", "marginal covariances from ceres::Covariance");
+  b.Bind("huber_scale", c.huber_scale, "sigma", "Huber loss on range-bearing residuals (0 = none)");
+  BindParams(c.frontend, b);  // the EKF front end's association settings, same names
+}
+
+void GraphSlam::Start(const StreamHeader& header) {
+  frontend_.Start(header);
+  alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
+  const LandmarkSensorConfig sensor = header.sensors.landmarks.value_or(LandmarkSensorConfig{});
+  known_ids_ = config_.frontend.association == "known" || (config_.frontend.association == "auto" && sensor.known_ids);
+  graph_ = LandmarkGraph{};
+  graph_.observation_covariance = config_.frontend.observation_noise_scale * ObservationCovariance(sensor);
+  graph_.poses.push_back(header.start_pose.vector());
+  keyframe_t_s_ = {0.0};
+  samples_.clear();
+  solved_landmarks_.clear();
+  T_keyframe_robot_ = SE2();
+  covariance_since_keyframe_.setZero();
+  steps_since_keyframe_ = 0;
+  travel_since_keyframe_m_ = 0.0;
+  skipped_scans_ = 0;
+  estimate_ = Estimate{};
+}
+
+void GraphSlam::OnOdometry(const OdometryEvent& odometry) {
+  frontend_.OnOdometry(odometry);
+  // Propagate the relative pose and its covariance from the keyframe (Thrun Table 5.6).
+  const OdometryIncrement u = DecomposeSigned(odometry.delta);
+  const MotionPrediction p = PredictMotion(T_keyframe_robot_, u);
+  const Eigen::Matrix3d M = config_.frontend.motion_noise_scale * IncrementCovariance(u, alpha_);
+  covariance_since_keyframe_ = p.J_pose_pose * covariance_since_keyframe_ * p.J_pose_pose.transpose() +
+                               p.J_pose_increment * M * p.J_pose_increment.transpose();
+  T_keyframe_robot_ = p.pose;
+  ++steps_since_keyframe_;
+  travel_since_keyframe_m_ += std::abs(u.trans);
+  samples_.push_back({odometry.t_s, static_cast<int>(graph_.poses.size()) - 1, T_keyframe_robot_,
+                      covariance_since_keyframe_});
+}
+
+bool GraphSlam::WantKeyframe() const {
+  if (steps_since_keyframe_ == 0) return false;  // observations attach to the current keyframe
+  const bool by_steps = config_.keyframe_every_odometry > 0;
+  const bool by_distance = config_.keyframe_distance_m > 0;
+  if (!by_steps && !by_distance) return true;
+  return (by_steps && steps_since_keyframe_ >= config_.keyframe_every_odometry) ||
+         (by_distance && travel_since_keyframe_m_ >= config_.keyframe_distance_m);
+}
+
+void GraphSlam::AddKeyframe(double t_s) {
+  const int from = static_cast<int>(graph_.poses.size()) - 1;
+  graph_.odometry.push_back({from, T_keyframe_robot_, covariance_since_keyframe_});
+  // Initial guess: the last keyframe's (possibly optimized) pose composed with the
+  // odometry when solving periodically, else the front end's filtered pose.
+  const SE2 guess = config_.solve_every_keyframes > 0 ? SE2::FromVector(graph_.poses[from]) * T_keyframe_robot_
+                                                      : frontend_.state().Pose();
+  graph_.poses.push_back(guess.vector());
+  keyframe_t_s_.push_back(t_s);
+  if (!samples_.empty() && samples_.back().t_s == t_s)  // this odometry event is the keyframe itself
+    samples_.back() = {t_s, from + 1, SE2(), Eigen::Matrix3d::Zero()};
+  T_keyframe_robot_ = SE2();
+  covariance_since_keyframe_.setZero();
+  steps_since_keyframe_ = 0;
+  travel_since_keyframe_m_ = 0.0;
+}
+
+void GraphSlam::OnLandmarks(const LandmarkEvent& event) {
+  const std::vector<int> keys = frontend_.ProcessLandmarks(event);
+  if (WantKeyframe()) AddKeyframe(event.t_s);
+  else if (steps_since_keyframe_ > 0) {  // between keyframes: the scan is not used
+    ++skipped_scans_;
+    return;
+  }
+  const int keyframe = static_cast<int>(graph_.poses.size()) - 1;
+  for (size_t i = 0; i < keys.size(); ++i)
+    if (keys[i] >= 0)
+      graph_.observations.push_back({keyframe, keys[i], {event.observations[i].range_m, event.observations[i].bearing_rad}});
+  if (config_.solve_every_keyframes > 0 && keyframe % config_.solve_every_keyframes == 0) {
+    const LandmarkGraphSolution s = Solve(false);
+    estimate_.diagnostics["solver_iterations"].emplace_back(event.t_s, s.iterations);
+  }
+}
+
+LandmarkGraphSolution GraphSlam::Solve(bool with_covariance) {
+  // Landmarks: the front end's confirmed ones (tentative and deleted ones are left out,
+  // and so are their observations); the guess is the last solution or the EKF's mean.
+  graph_.landmarks.clear();
+  const auto& tracks = frontend_.tracks();
+  for (size_t j = 0; j < tracks.size(); ++j) {
+    if (!tracks[j].confirmed) continue;
+    const auto solved = solved_landmarks_.find(tracks[j].key);
+    graph_.landmarks[tracks[j].key] =
+        solved != solved_landmarks_.end() ? solved->second : frontend_.state().Landmark(static_cast<int>(j));
+  }
+  LandmarkGraphSolution s = SolveLandmarkGraph(
+      graph_, {config_.max_iterations, config_.compute_covariance && with_covariance, config_.huber_scale});
+  solved_landmarks_ = graph_.landmarks;
+  return s;
+}
+
+Estimate GraphSlam::Finish() {
+  const Estimate front = frontend_.Finish();
+  const LandmarkGraphSolution s = Solve(true);
+  const double t_end = samples_.empty() ? 0.0 : samples_.back().t_s;
+  auto& d = estimate_.diagnostics;
+  d["solver_iterations"].emplace_back(t_end, s.iterations);
+  d["chi2_final"].emplace_back(t_end, s.chi2_final);
+  d["chi2_per_residual"].emplace_back(t_end, s.num_residuals > 0 ? s.chi2_final / s.num_residuals : 0.0);
+  d["solution_usable"].emplace_back(t_end, s.usable ? 1.0 : 0.0);
+  d["num_keyframes"].emplace_back(t_end, static_cast<double>(graph_.poses.size()));
+  d["skipped_scans"].emplace_back(t_end, skipped_scans_);
+  for (const char* name : {"num_landmarks", "nis", "nis_dof"})
+    if (front.diagnostics.count(name)) d[std::string("frontend_") + name] = front.diagnostics.at(name);
+
+  // Trajectory: keyframe 0, then every odometry event through its keyframe. For
+  // T = T_k * T_kr: Sigma = J_k Sigma_k J_k^T + J_r Sigma_kr J_r^T (independent parts).
+  const bool cov = s.covariance_ok;
+  estimate_.trajectory.push_back({0.0, SE2::FromVector(graph_.poses[0]), Eigen::Matrix3d::Zero(), cov});
+  for (const OdometrySample& sample : samples_) {
+    const SE2 T_k = SE2::FromVector(graph_.poses[sample.keyframe]);
+    const SE2& T_kr = sample.T_keyframe_robot;
+    const double c = std::cos(T_k.theta), sn = std::sin(T_k.theta);
+    Eigen::Matrix3d J_k, J_r;
+    J_k << 1, 0, -sn * T_kr.x - c * T_kr.y, 0, 1, c * T_kr.x - sn * T_kr.y, 0, 0, 1;
+    J_r << c, -sn, 0, sn, c, 0, 0, 0, 1;
+    Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+    if (cov)
+      P = J_k * s.pose_covariances[sample.keyframe] * J_k.transpose() + J_r * sample.covariance * J_r.transpose();
+    estimate_.trajectory.push_back({sample.t_s, T_k * T_kr, 0.5 * (P + P.transpose()), cov});
+  }
+  for (const auto& track : frontend_.tracks()) {
+    const auto it = graph_.landmarks.find(track.key);
+    if (it == graph_.landmarks.end()) continue;
+    const auto c = s.landmark_covariances.find(track.key);
+    estimate_.landmarks.push_back({known_ids_ ? track.id : track.key, it->second,
+                                   c != s.landmark_covariances.end() ? c->second : Eigen::Matrix2d::Zero(),
+                                   c != s.landmark_covariances.end()});
+  }
+  for (size_t i = 0; i < graph_.poses.size(); ++i) {
+    estimate_.pose_graph.node_t_s.push_back(keyframe_t_s_[i]);
+    estimate_.pose_graph.nodes.push_back(SE2::FromVector(graph_.poses[i]));
+    if (i > 0) estimate_.pose_graph.edges.push_back({static_cast<int>(i) - 1, static_cast<int>(i), false, true});
+  }
+  return std::move(estimate_);
+}
+
+ModuleInfo GraphSlamModule() {
+  return MakeModuleInfo<GraphSlam, GraphSlamConfig>(
+      "graphslam", "landmark GraphSLAM: full smoothing of keyframes and landmarks with Ceres (EKF front end)",
+      {.odometry = true, .landmarks = true}, &BindParams);
+}
+
+}  // namespace slambox

@@ -1,0 +1,70 @@
+#pragma once
+// `graphslam`: landmark GraphSLAM, full smoothing over keyframe poses and landmarks
+// (Thrun, Prob. Robotics, Ch. 11) solved with Ceres (slam/landmark_graph.hpp).
+// An embedded EKF-SLAM runs alongside as the front end: it associates observations
+// (known ids, nearest neighbour or JCBB, with tentative landmarks) and gives the initial
+// guess of every keyframe and landmark. A keyframe is made at a landmark scan after
+// enough odometry; odometry between keyframes becomes one between-factor whose
+// covariance is the motion model's, propagated over the steps. The batch solve runs in
+// Finish (and optionally every K keyframes); marginal covariances come from
+// ceres::Covariance. The trajectory has every odometry event: a non-keyframe is its
+// keyframe's pose composed with the odometry since.
+#include <vector>
+
+#include "core/slam_module.hpp"
+#include "slam/ekf_slam.hpp"
+#include "slam/landmark_graph.hpp"
+
+namespace slambox {
+
+struct GraphSlamConfig {
+  int keyframe_every_odometry = 5;  ///< [steps] a scan makes a keyframe after this much odometry (0 = off)
+  double keyframe_distance_m = 0.0; ///< [m] ... or after this much travel (0 = off); both off: every scan
+  int solve_every_keyframes = 0;    ///< [keyframes] also solve during the run (0 = only at the end)
+  int max_iterations = 50;          ///< [-] Ceres iterations per solve
+  bool compute_covariance = true;   ///< marginal covariances of poses and landmarks (ceres::Covariance)
+  double huber_scale = 0.0;         ///< [sigma] Huber loss on range-bearing residuals (0 = none)
+  EkfSlamConfig frontend;           ///< association and tentative-landmark settings (same names as ekf-slam)
+};
+void BindParams(GraphSlamConfig& c, ParamBinder& b);
+
+class GraphSlam : public SlamModule {
+ public:
+  explicit GraphSlam(const GraphSlamConfig& config) : config_(config), frontend_(config.frontend) {}
+  void Start(const StreamHeader& header) override;
+  void OnOdometry(const OdometryEvent& odometry) override;
+  void OnLandmarks(const LandmarkEvent& event) override;
+  Estimate Finish() override;
+
+ private:
+  /// One odometry event's pose relative to its keyframe (for the output trajectory).
+  struct OdometrySample {
+    double t_s = 0.0;
+    int keyframe = 0;
+    SE2 T_keyframe_robot;
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< of T_keyframe_robot
+  };
+  bool WantKeyframe() const;
+  void AddKeyframe(double t_s);
+  LandmarkGraphSolution Solve(bool with_covariance);
+
+  GraphSlamConfig config_;
+  EkfSlam frontend_;
+  std::array<double, 4> alpha_{};
+  bool known_ids_ = true;
+  LandmarkGraph graph_;
+  std::vector<double> keyframe_t_s_;
+  std::vector<OdometrySample> samples_;
+  std::map<int, Eigen::Vector2d> solved_landmarks_;  ///< from the last periodic solve
+  // Odometry since the last keyframe: relative pose, its covariance, steps and travel.
+  SE2 T_keyframe_robot_;
+  Eigen::Matrix3d covariance_since_keyframe_ = Eigen::Matrix3d::Zero();
+  int steps_since_keyframe_ = 0;
+  double travel_since_keyframe_m_ = 0.0;
+  int skipped_scans_ = 0;
+  Estimate estimate_;
+};
+
+ModuleInfo GraphSlamModule();
+
+}  // namespace slambox

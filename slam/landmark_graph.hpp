@@ -1,0 +1,58 @@
+#pragma once
+// The landmark SLAM graph of Thrun's GraphSLAM (Prob. Robotics, Ch. 11) solved as
+// nonlinear least squares with Ceres: keyframe poses and landmark positions are
+// parameter blocks; odometry between-factors link consecutive keyframes, range-bearing
+// factors link a keyframe to a landmark; keyframe 0 is held constant (gauge).
+//   odometry:      e = [R_i^T (t_j - t_i) - t_ij ; wrap(theta_j - theta_i - theta_ij)], info Sigma_ij^-1
+//   range-bearing: e = [r - |m - t_i| ; wrap(b - atan2(m - t_i) + theta_i)], info R^-1
+// Marginal covariances of every pose and landmark come from ceres::Covariance.
+#include <Eigen/Core>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/se2.hpp"
+
+namespace slambox {
+
+struct OdometryConstraint {
+  int from = 0;  ///< keyframe index; `to` is from + 1
+  SE2 T_from_to;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< over (dx [m], dy [m], dtheta [rad])
+};
+
+struct RangeBearingConstraint {
+  int keyframe = 0;
+  int landmark = 0;  ///< key into LandmarkGraph::landmarks
+  Eigen::Vector2d z = Eigen::Vector2d::Zero();  ///< (range [m], bearing [rad])
+};
+
+struct LandmarkGraph {
+  std::vector<Eigen::Vector3d> poses;        ///< (x, y, theta) of each keyframe: guess in, solution out
+  std::map<int, Eigen::Vector2d> landmarks;  ///< key -> position [m]: guess in, solution out
+  std::vector<OdometryConstraint> odometry;
+  std::vector<RangeBearingConstraint> observations;  ///< naming a missing landmark: skipped
+  Eigen::Matrix2d observation_covariance = Eigen::Matrix2d::Identity();  ///< R [m^2, rad^2]
+};
+
+struct LandmarkGraphOptions {
+  int max_iterations = 50;
+  bool compute_covariance = true;
+  double huber_scale = 0.0;  ///< Huber loss on whitened range-bearing residuals (0 = none)
+};
+
+struct LandmarkGraphSolution {
+  std::string termination;  ///< Ceres' termination type
+  bool usable = false;
+  int iterations = 0;
+  double chi2_initial = 0.0;  ///< 2 x Ceres' cost (sum of squared whitened residuals)
+  double chi2_final = 0.0;
+  int num_residuals = 0;
+  bool covariance_ok = false;
+  std::vector<Eigen::Matrix3d> pose_covariances;      ///< keyframe 0: zero (held constant)
+  std::map<int, Eigen::Matrix2d> landmark_covariances;
+};
+
+LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& graph, const LandmarkGraphOptions& options);
+
+}  // namespace slambox
