@@ -96,16 +96,15 @@ EkfUpdateResult UpdateState(EkfSlamState& s, const std::vector<LinearizedObserva
   s.mean.noalias() += K * nu;
   s.mean(2) = NormalizeAngle(s.mean(2));
 
-  // Joseph form in two dense products: A = (I - K H) P = P - K C, then
-  // P' = A - (A H^T) K^T + K R K^T = A + (K R - A H^T) K^T.
+  // Joseph form P' = (I - K H) P (I - K H)^T + K R K^T, expanded (exact for any gain K):
+  // P' = P - K C - C^T K^T + K S K^T = P + K E + E^T K^T with E = S K^T / 2 - C.
+  // Only the lower triangle is computed (two triangular products, n^2 k flops each),
+  // then mirrored: P' is exactly symmetric.
   Eigen::MatrixXd& P = s.covariance;
-  P.noalias() -= K * C;
-  Eigen::MatrixXd KR_minus_AHt = -RightMultiplyHt(obs, P);
-  for (Eigen::Index j = 0; j < k; j += 2) KR_minus_AHt.middleCols<2>(j).noalias() += K.middleCols<2>(j) * R;
-  P.noalias() += KR_minus_AHt * K.transpose();
-  // Remove the round-off asymmetry: P = (P + P^T) / 2.
-  for (Eigen::Index c = 0; c < P.cols(); ++c)
-    for (Eigen::Index r = c + 1; r < P.rows(); ++r) P(r, c) = P(c, r) = 0.5 * (P(r, c) + P(c, r));
+  const Eigen::MatrixXd E = 0.5 * S * K.transpose() - C;  // k x n
+  P.triangularView<Eigen::Lower>() += K * E;
+  P.triangularView<Eigen::Lower>() += E.transpose() * K.transpose();
+  P.triangularView<Eigen::StrictlyUpper>() = P.transpose();
   return result;
 }
 
