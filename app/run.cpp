@@ -3,7 +3,9 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -103,11 +105,15 @@ json RunAndWrite(const RunRequest& request) {
       throw InputError("--set algo." + name, 0, "'" + name + "' is not among the algorithms run",
                        "add it to --algo or drop the --set");
   }
+  // Build every module first: a bad --set fails before any file is written.
+  std::vector<std::unique_ptr<SlamModule>> modules;
+  for (const auto& name : names)
+    modules.push_back(FindModule(name).create(overrides.algo.count(name) ? overrides.algo.at(name) : ParamOverrides{}));
+
   const bool progress = !request.quiet && isatty(STDERR_FILENO);
   const fs::path dir(request.output_dir);
   fs::create_directories(dir);
-
-  GroundTruth gt{stream.groundtruth, stream.header.world};
+  const GroundTruth gt{stream.groundtruth, stream.header.world};
   json doc;
   doc["slambox_version"] = kVersion;
   doc["scenario"] = stream.header.scenario_name;
@@ -115,30 +121,27 @@ json RunAndWrite(const RunRequest& request) {
   doc["duration_s"] = stream.header.duration_s;
   doc["distance_m"] = PathLength(stream.groundtruth);
   doc["algorithms"] = json::object();
-
   WriteTum((dir / "groundtruth.tum").string(), stream.groundtruth);
   WriteJson(dir / "world.json", {{"scenario", stream.header.scenario_name},
                                  {"seed", stream.header.seed},
                                  {"duration_s", stream.header.duration_s},
                                  {"world", ToJson(stream.header.world)}});
 
-  for (const auto& name : names) {
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
     if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
     json metrics;
     try {
-      const ParamOverrides params = overrides.algo.count(name) ? overrides.algo.at(name) : ParamOverrides{};
-      auto module = FindModule(name).create(params);
-      const Estimate estimate = Replay(*module, stream);
+      const Estimate estimate = Replay(*modules[i], stream);
       const Evaluation evaluation = EvaluateEstimate(gt, estimate);
       metrics = evaluation.metrics;
       WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
       WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));
       WriteJson(dir / "series" / (name + ".json"), evaluation.series);
-    } catch (const InputError&) {
-      throw;  // bad parameters are the user's to fix, not a module failure
-    } catch (const std::exception& e) {
+    } catch (const std::exception& e) {  // a failing module never takes the others down
       metrics = {{"status", "failed"}, {"reason", e.what()}};
     }
+    modules[i].reset();
     doc["algorithms"][name] = metrics;
     if (progress) std::cerr << " " << metrics.value("status", "?") << "\n";
   }
