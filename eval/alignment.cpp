@@ -1,5 +1,6 @@
 #include "eval/alignment.hpp"
 
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
