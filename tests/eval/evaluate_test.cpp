@@ -90,7 +90,7 @@ TEST(Evaluate, AlignModesAndLandmarks) {
   Estimate est = Copy(gt);
   const SE2 T_est_gt(3.0, -1.0, 0.4);  // the estimate lives in a rotated, shifted frame
   for (auto& p : est.trajectory) p.pose = T_est_gt * p.pose;
-  for (const auto& l : gt.world.landmarks) est.landmarks.push_back({l.id, T_est_gt * l.position, {}, false});
+  for (const auto& l : gt.world.landmarks) est.landmarks.push_back({l.id, T_est_gt * l.position, Eigen::Matrix2d::Zero(), false});
   EvalOptions o;
   EXPECT_GT(EvaluateEstimate(gt, est, o).metrics["ate_rmse_m"].get<double>(), 1.0);
   o.align = AlignMode::kSE2;
