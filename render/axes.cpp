@@ -52,6 +52,7 @@ std::string FormatTick(double value, double step) {
   else std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
   std::string s = buf;
   if (s.rfind("-0", 0) == 0 && std::stod(s) == 0.0) s = s.substr(1);
+  if (!s.empty() && s[0] == '-') s = "\u2212" + s.substr(1);  // a typographic minus sign
   return s;
 }
 
@@ -149,18 +150,16 @@ void DrawFrame(Canvas& c, const Axes& a, const AxesLabels& labels, const FigureS
            labels.title, {.size_px = st.title_px, .h = HAlign::kCenter, .v = VAlign::kBaseline, .weight = FontWeight::kBold});
 }
 
-void DrawScaleBar(Canvas& c, const Axes& a, const FigureStyle& st) {
+void DrawScaleBar(Canvas& c, const Axes& a, double x, double y, double max_len_px, const FigureStyle& st) {
   const double px_per_m = a.PixelsPerUnitX();
-  const double target_m = 0.2 * (a.x1 - a.x0);
-  const double len_m = NiceStep(target_m, 1);
+  double len_m = NiceStep(0.2 * (a.x1 - a.x0), 1);
+  while (len_m * px_per_m > max_len_px && len_m > 1e-9) len_m = NiceStep(0.6 * len_m, 1);
   const double len_px = len_m * px_per_m;
-  const double x = a.area.left + 20, y = a.area.bottom - 22;
   const Stroke bar{color::kBlack, 3.0, {}};
-  c.FillRect(x - 8, y - st.legend_px - 14, x + len_px + 8, y + 10, color::kWhite.WithAlpha(0.85));
   c.Line({x, y}, {x + len_px, y}, bar);
   c.Line({x, y - 5}, {x, y + 5}, {color::kBlack, 2.0, {}});
   c.Line({x + len_px, y - 5}, {x + len_px, y + 5}, {color::kBlack, 2.0, {}});
-  c.Text(x + 0.5 * len_px, y - 8, FormatTick(len_m, len_m) + " m",
+  c.Text(x + 0.5 * len_px, y - 9, "scale: " + FormatTick(len_m, len_m) + " m",
          {.size_px = st.legend_px, .h = HAlign::kCenter, .v = VAlign::kBaseline});
 }
 

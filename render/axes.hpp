@@ -61,7 +61,8 @@ struct AxesLabels {
 void DrawGrid(Canvas& canvas, const Axes& axes, const FigureStyle& style = {});
 /// Frame, ticks, tick labels, axis labels and title (call after drawing data).
 void DrawFrame(Canvas& canvas, const Axes& axes, const AxesLabels& labels, const FigureStyle& style = {});
-/// A scale bar of round length (about 1/5 of the plot width) in the lower-left corner.
-void DrawScaleBar(Canvas& canvas, const Axes& axes, const FigureStyle& style = {});
+/// A scale bar of round length (about 1/5 of the plot width, at most `max_len_px`) with
+/// its left end at (x, y) [px], e.g. outside the plot under the legend.
+void DrawScaleBar(Canvas& canvas, const Axes& axes, double x, double y, double max_len_px, const FigureStyle& style = {});
 
 }  // namespace slambox::render

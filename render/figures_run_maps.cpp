@@ -76,9 +76,9 @@ bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem) {
   const auto [lo, hi] = RunExtent(run);
   WorldFigure fig(kFigureWidthPx, WorldFigureHeight(kFigureWidthPx, lo, hi, legend), lo, hi, legend);
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, false);
-  DrawPath(fig.canvas, fig.axes, run.groundtruth, GroundTruthStyle().stroke);
   for (size_t i = 0; i < run.algorithms.size(); ++i)
     DrawPath(fig.canvas, fig.axes, run.algorithms[i].trajectory, AlgorithmStyle(run, i).stroke);
+  DrawPath(fig.canvas, fig.axes, run.groundtruth, GroundTruthStyle().stroke);  // on top: the reference
   // End markers in each path's colour, then the shared start on top.
   auto end_marker = [&](const std::vector<StampedPose>& p, const Rgba& c) {
     if (!p.empty() && p.back().pose.translation().allFinite())
@@ -112,19 +112,16 @@ bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem) {
     legend.push_back({.label = "landmark estimate", .line = {{}, 0.0, {}}, .marker = MarkerShape::kCross, .marker_color = c});
     legend.push_back({.label = "2\u03c3 ellipse", .line = {c, 1.6, {}}});
     if (run.has_world && !run.world.landmarks.empty())
-      legend.push_back({.label = "true posts", .line = {{}, 0.0, {}}, .marker = MarkerShape::kCircle, .marker_color = Rgba{0.35, 0.35, 0.35}});
+      legend.push_back({.label = "true posts", .line = {{}, 0.0, {}}, .marker = MarkerShape::kRing, .marker_color = color::kBlack});
   }
   legend.push_back({.label = "estimated path", .line = {c.WithAlpha(0.45), 1.5, {}}});
 
-  const auto [lo, hi] = RunExtent(run);
+  const auto [lo, hi] = RunExtent(run, static_cast<int>(algo));
   WorldFigure fig(kFigureWidthPx, WorldFigureHeight(kFigureWidthPx, lo, hi, legend), lo, hi, legend);
   if (grid) DrawGrid(fig.canvas, fig.axes, *e.grid);
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, true);
   DrawPath(fig.canvas, fig.axes, a.trajectory.empty() ? PosesOf(e) : a.trajectory, {c.WithAlpha(0.45), 1.5, {}});
   for (const auto& q : DedupPixels(fig.axes, e.map_points)) fig.canvas.FillCircle(q, 1.1, c);
-  if (run.has_world)
-    for (const auto& l : run.world.landmarks)
-      DrawMarker(fig.canvas, fig.axes.ToPixel(l.position), MarkerShape::kCircle, 9.0, Rgba{0.35, 0.35, 0.35});
   for (const auto& l : e.landmarks) {
     if (!l.position.allFinite()) continue;
     if (l.has_covariance) {
@@ -138,6 +135,9 @@ bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem) {
     }
     DrawMarker(fig.canvas, fig.axes.ToPixel(l.position), MarkerShape::kCross, 9.0, c);
   }
+  if (run.has_world)  // true posts last, as open rings, so the estimates show through
+    for (const auto& l : run.world.landmarks)
+      DrawMarker(fig.canvas, fig.axes.ToPixel(l.position), MarkerShape::kRing, 12.0, color::kBlack);
   fig.Finish(RunTitle(run, "Map built by " + a.name), legend);
   SaveFigure(fig.canvas, stem);
   return true;
@@ -152,12 +152,13 @@ bool DrawUncertaintyFigure(const RunFolder& run, size_t algo, const std::string&
   if (with_cov.size() < 2) return false;
   const SeriesStyle style = AlgorithmStyle(run, algo);
   const Rgba c = style.stroke.color.a < 1 || a.name == "odometry" ? color::kBlue : style.stroke.color;
-  std::vector<LegendEntry> legend{LineEntry(GroundTruthStyle()), {.label = a.name + " estimate", .line = {c, 2.0, {}}},
+  const Stroke gt_stroke{color::kGroundTruth.WithAlpha(0.6), 1.6, {}};
+  std::vector<LegendEntry> legend{{.label = "ground truth", .line = gt_stroke}, {.label = a.name + " estimate", .line = {c, 2.0, {}}},
                                   {.label = "2\u03c3 position ellipse", .line = {c, 1.4, {}}, .patch = c.WithAlpha(0.15)}};
-  const auto [lo, hi] = RunExtent(run);
+  const auto [lo, hi] = RunExtent(run, static_cast<int>(algo));
   WorldFigure fig(kFigureWidthPx, WorldFigureHeight(kFigureWidthPx, lo, hi, legend), lo, hi, legend);
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, true);
-  DrawPath(fig.canvas, fig.axes, run.groundtruth, {color::kGroundTruth.WithAlpha(0.6), 1.6, {}});
+  DrawPath(fig.canvas, fig.axes, run.groundtruth, gt_stroke);
   DrawPath(fig.canvas, fig.axes, PosesOf(*a.estimate), {c, 2.0, {}});
   // About 40 ellipses, evenly spaced in time along the path.
   const size_t count = std::min<size_t>(40, with_cov.size());
@@ -188,7 +189,7 @@ bool DrawParticlesFigure(const RunFolder& run, size_t algo, const std::string& s
   for (size_t k = 0; k < chosen.size(); ++k)
     legend.push_back({.label = "particles, " + FormatSeconds(snaps[chosen[k]].t_s), .line = {{}, 0.0, {}},
                       .marker = MarkerShape::kCircle, .marker_color = SeriesColor(static_cast<int>(k))});
-  const auto [lo, hi] = RunExtent(run);
+  const auto [lo, hi] = RunExtent(run, static_cast<int>(algo));
   WorldFigure fig(kFigureWidthPx, WorldFigureHeight(kFigureWidthPx, lo, hi, legend), lo, hi, legend);
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, true);
   DrawPath(fig.canvas, fig.axes, run.groundtruth, GroundTruthStyle().stroke);
@@ -222,9 +223,11 @@ bool DrawPoseGraphFigure(const RunFolder& run, size_t algo, const std::string& s
   std::vector<LegendEntry> legend{
       {.label = "nodes (optimized poses)", .line = {{}, 0.0, {}}, .marker = MarkerShape::kCircle, .marker_color = color::kBlue},
       {.label = "odometry edges", .line = {odo, 1.4, {}}},
-      {.label = "loop closures accepted (" + std::to_string(n_acc) + ")", .line = {accepted, 2.0, {}}},
-      {.label = "loop closures rejected (" + std::to_string(n_rej) + ")", .line = {rejected, 2.0, {8, 5}}}};
-  const auto [lo, hi] = RunExtent(run);
+      {.label = "loop closures accepted (" + std::to_string(n_acc) + ")", .line = {accepted, 2.0, {}},
+       .marker = MarkerShape::kRing, .marker_color = accepted},
+      {.label = "loop closures rejected (" + std::to_string(n_rej) + ")", .line = {rejected, 2.0, {8, 5}},
+       .marker = MarkerShape::kRing, .marker_color = rejected}};
+  const auto [lo, hi] = RunExtent(run, static_cast<int>(algo));
   WorldFigure fig(kFigureWidthPx, WorldFigureHeight(kFigureWidthPx, lo, hi, legend), lo, hi, legend);
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, true);
   auto node_px = [&](int i) { return fig.axes.ToPixel(g.nodes.at(static_cast<size_t>(i)).translation()); };
@@ -236,6 +239,10 @@ bool DrawPoseGraphFigure(const RunFolder& run, size_t algo, const std::string& s
     if (valid(e) && e.loop_closure && !e.accepted) fig.canvas.Line(node_px(e.from), node_px(e.to), {rejected, 1.6, {8, 5}});
   for (const auto& e : g.edges)
     if (valid(e) && e.loop_closure && e.accepted) fig.canvas.Line(node_px(e.from), node_px(e.to), {accepted, 2.0, {}});
+  // A closure between revisits of one place is nearly zero-length: ring its end nodes.
+  for (const auto& e : g.edges)
+    if (valid(e) && e.loop_closure)
+      for (int k : {e.from, e.to}) DrawMarker(fig.canvas, node_px(k), MarkerShape::kRing, 11.0, e.accepted ? accepted : rejected);
   for (int i = 0; i < n; ++i) fig.canvas.FillCircle(node_px(i), 2.6, color::kBlue);
   fig.Finish(RunTitle(run, "Pose graph of " + a.name), legend);
   SaveFigure(fig.canvas, stem);

@@ -62,7 +62,7 @@ bool DrawErrorFigure(const RunFolder& run, const std::string& stem) {
   }
   if (ate.empty() && rpe.empty()) return false;
   const int width = kFigureWidthPx, panels = (!ate.empty()) + (!rpe.empty());
-  const int panel_h = 400, height = 40 + panels * (panel_h + 60);
+  const int panel_h = 400, height = 56 + panels * (panel_h + 60) - 60 + 10;
   Canvas c(width, height, 3);
   std::vector<LegendEntry> legend;
   for (const auto& l : ate.empty() ? rpe : ate) legend.push_back({.label = l.style.label, .line = l.style.stroke});

@@ -33,6 +33,12 @@ void DrawMarker(Canvas& canvas, const Eigen::Vector2d& c, MarkerShape shape, dou
       canvas.Polyline(ring, outline);
       return;
     }
+    case MarkerShape::kRing: {
+      auto ring = canvas.CirclePoints(c, h);
+      ring.push_back(ring.front());
+      canvas.Polyline(ring, {fill, std::max(1.5, 0.16 * size_px), {}});
+      return;
+    }
     case MarkerShape::kCross: {
       const Stroke s{fill, std::max(1.5, 0.22 * size_px), {}};
       canvas.Line(c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, h), s);

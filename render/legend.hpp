@@ -8,7 +8,7 @@
 
 namespace slambox::render {
 
-enum class MarkerShape { kNone, kCircle, kSquare, kTriangle, kDiamond, kCross };
+enum class MarkerShape { kNone, kCircle, kSquare, kTriangle, kDiamond, kCross, kRing };  ///< kRing: open circle
 
 /// A filled marker of `size_px` (its bounding-box side) with a thin darker outline.
 void DrawMarker(Canvas& canvas, const Eigen::Vector2d& center, MarkerShape shape, double size_px, const Rgba& fill);

@@ -24,7 +24,7 @@ SeriesStyle GroundTruthStyle() { return {"ground truth", {color::kGroundTruth, 2
 WorldFigure::WorldFigure(int width_px, int height_px, Eigen::Vector2d lo, Eigen::Vector2d hi,
                          const std::vector<LegendEntry>& legend, const FigureStyle& style)
     : canvas(width_px, height_px, 3) {
-  const double legend_w = legend.empty() ? 0.0 : LegendSize(legend, style).x() + 24.0;
+  const double legend_w = legend.empty() ? 140.0 : std::max(140.0, LegendSize(legend, style).x() + 24.0);
   const PlotArea area{92.0, 56.0, width_px - 24.0 - legend_w, height_px - 72.0};
   const Eigen::Vector2d pad = 0.04 * (hi - lo).cwiseMax(Eigen::Vector2d(1.0, 1.0));
   axes = MakeEqualAspectAxes(area, lo - pad, hi + pad);
@@ -34,22 +34,26 @@ WorldFigure::WorldFigure(int width_px, int height_px, Eigen::Vector2d lo, Eigen:
 
 void WorldFigure::Finish(const std::string& title, const std::vector<LegendEntry>& legend, const FigureStyle& style) {
   canvas.ResetClip();
-  DrawScaleBar(canvas, axes, style);
   DrawFrame(canvas, axes, {title, "x [m]", "y [m]"}, style);
-  if (!legend.empty()) DrawLegendAt(canvas, axes.area.right + 16.0, axes.area.top, legend, style);
+  // Legend and scale bar outside the plot, on the right, so they never hide data.
+  const double x = axes.area.right + 16.0;
+  const Eigen::Vector4d box = legend.empty() ? Eigen::Vector4d(x, axes.area.top, canvas.width() - 24.0, axes.area.top)
+                                             : DrawLegendAt(canvas, x, axes.area.top, legend, style);
+  const double room = std::max(60.0, box[2] - box[0] - 20.0);
+  DrawScaleBar(canvas, axes, x + 10.0, box[3] + 24.0 + style.legend_px, room, style);
 }
 
 int WorldFigureHeight(int width_px, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                       const std::vector<LegendEntry>& legend, const FigureStyle& style) {
-  const double legend_w = legend.empty() ? 0.0 : LegendSize(legend, style).x() + 24.0;
+  const double legend_w = legend.empty() ? 140.0 : std::max(140.0, LegendSize(legend, style).x() + 24.0);
   const double plot_w = width_px - 116.0 - legend_w;
   const Eigen::Vector2d span = (hi - lo).cwiseMax(Eigen::Vector2d(1e-3, 1e-3)) * 1.08;
-  const double legend_h = legend.empty() ? 0.0 : LegendSize(legend, style).y() + 128.0;
+  const double legend_h = (legend.empty() ? 0.0 : LegendSize(legend, style).y()) + 60.0 + 128.0;  // + scale bar
   const double h = std::max(plot_w * span.y() / span.x() + 128.0, legend_h);
   return std::clamp(static_cast<int>(std::lround(h)), 480, 1100);
 }
 
-std::pair<Eigen::Vector2d, Eigen::Vector2d> RunExtent(const RunFolder& run) {
+std::pair<Eigen::Vector2d, Eigen::Vector2d> RunExtent(const RunFolder& run, int only_algo) {
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::Vector2d lo(inf, inf), hi(-inf, -inf);
   if (run.has_world) {
@@ -74,8 +78,9 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> RunExtent(const RunFolder& run) {
   }
   const Eigen::Vector2d margin = 0.5 * (hi - lo).cwiseMax(Eigen::Vector2d(2.0, 2.0));
   const Eigen::Vector2d cap_lo = lo - margin, cap_hi = hi + margin;
-  for (const auto& a : run.algorithms)
-    for (const auto& p : a.trajectory) {
+  for (size_t i = 0; i < run.algorithms.size(); ++i)
+    for (const auto& p : run.algorithms[i].trajectory) {
+      if (only_algo >= 0 && static_cast<int>(i) != only_algo) break;
       if (!p.pose.translation().allFinite()) continue;
       lo = lo.cwiseMin(p.pose.translation().cwiseMax(cap_lo));
       hi = hi.cwiseMax(p.pose.translation().cwiseMin(cap_hi));
