@@ -15,8 +15,9 @@ struct OdometryIncrement {
   double rot2 = 0.0;   ///< [rad]
 };
 
-/// Decomposes a relative pose (robot frame) into (rot1, trans, rot2). For a translation
-/// under 1e-9 m, rot1 = 0 and the whole rotation goes to rot2.
+/// Decomposes a relative pose (robot frame) into (rot1, trans, rot2) with |rot1| <= pi/2:
+/// backward motion has trans < 0. For a translation under 1e-9 m, rot1 = 0 and the whole
+/// rotation goes to rot2.
 OdometryIncrement Decompose(const SE2& delta);
 /// Like Decompose, but a motion pointing more than 90 deg away from the heading is read as
 /// driving backwards (trans < 0, |rot1| <= pi/2), as a differential drive does. Compose
