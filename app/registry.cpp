@@ -2,12 +2,16 @@
 
 #include "core/error.hpp"
 #include "slam/dead_reckoning.hpp"
+#include "slam/ekf_slam.hpp"
+#include "slam/graphslam.hpp"
 
 namespace slambox {
 
 const std::vector<ModuleInfo>& AllModules() {
   static const std::vector<ModuleInfo> modules = {
       DeadReckoningModule(),
+      EkfSlamModule(),
+      GraphSlamModule(),
   };
   return modules;
 }

@@ -19,16 +19,6 @@ OdometryIncrement Decompose(const SE2& delta) {
   return u;
 }
 
-OdometryIncrement DecomposeSigned(const SE2& delta) {
-  OdometryIncrement u = Decompose(delta);
-  if (std::abs(u.rot1) > M_PI / 2) {
-    u.rot1 = NormalizeAngle(u.rot1 - M_PI);
-    u.trans = -u.trans;
-    u.rot2 = NormalizeAngle(delta.theta - u.rot1);
-  }
-  return u;
-}
-
 SE2 Compose(const OdometryIncrement& u) {
   return {u.trans * std::cos(u.rot1), u.trans * std::sin(u.rot1), u.rot1 + u.rot2};
 }

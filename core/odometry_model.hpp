@@ -19,11 +19,6 @@ struct OdometryIncrement {
 /// backward motion has trans < 0. For a translation under 1e-9 m, rot1 = 0 and the whole
 /// rotation goes to rot2.
 OdometryIncrement Decompose(const SE2& delta);
-/// Like Decompose, but a motion pointing more than 90 deg away from the heading is read as
-/// driving backwards (trans < 0, |rot1| <= pi/2), as a differential drive does. Compose
-/// inverts it too. Filters use it so that the tiny noisy translation of a turn in place
-/// does not become rot1 = +-pi, whose variance a1 * pi^2 would swamp the heading.
-OdometryIncrement DecomposeSigned(const SE2& delta);
 /// The relative pose (trans cos rot1, trans sin rot1, rot1 + rot2).
 SE2 Compose(const OdometryIncrement& u);
 

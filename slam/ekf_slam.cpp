@@ -39,7 +39,7 @@ void EkfSlam::Start(const StreamHeader& header) {
 }
 
 void EkfSlam::OnOdometry(const OdometryEvent& odometry) {
-  const OdometryIncrement u = DecomposeSigned(odometry.delta);
+  const OdometryIncrement u = Decompose(odometry.delta);
   const MotionPrediction p = PredictMotion(state_.Pose(), u);
   Eigen::Matrix3d J = p.J_pose_pose;
   if (config_.fej) {  // Huang et al. 2008, eq. 27: the displacement between the first estimates

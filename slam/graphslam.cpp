@@ -39,7 +39,7 @@ void GraphSlam::Start(const StreamHeader& header) {
 void GraphSlam::OnOdometry(const OdometryEvent& odometry) {
   frontend_.OnOdometry(odometry);
   // Propagate the relative pose and its covariance from the keyframe (Thrun Table 5.6).
-  const OdometryIncrement u = DecomposeSigned(odometry.delta);
+  const OdometryIncrement u = Decompose(odometry.delta);
   const MotionPrediction p = PredictMotion(T_keyframe_robot_, u);
   const Eigen::Matrix3d M = config_.frontend.motion_noise_scale * IncrementCovariance(u, alpha_);
   covariance_since_keyframe_ = p.J_pose_pose * covariance_since_keyframe_ * p.J_pose_pose.transpose() +
