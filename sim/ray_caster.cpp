@@ -17,8 +17,8 @@ double RaySegmentRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, doubl
   if (denominator == 0.0) return kNoHit;
   const double t = n.dot(a - o) / denominator;
   if (t < 0.0 || t > max_range_m) return kNoHit;
-  const double s = (o + t * d - a).dot(e) / rr;
-  if (s < 0.0 || s > 1.0) return kNoHit;
+  const double s_times_rr = (o + t * d - a).dot(e);  // s = s_times_rr / rr must lie in [0, 1]
+  if (s_times_rr < 0.0 || s_times_rr > rr) return kNoHit;
   return t;
 }
 

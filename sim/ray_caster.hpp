@@ -47,7 +47,7 @@ double RayStaticRangeBruteForce(const Eigen::Vector2d& origin, const Eigen::Vect
 class StaticGeometryIndex {
  public:
   /// cell_m: grid cell edge [m]; grown if the grid would exceed ~4M cells.
-  explicit StaticGeometryIndex(StaticGeometry geometry, double cell_m = 1.0);
+  explicit StaticGeometryIndex(StaticGeometry geometry, double cell_m = 2.0);
   /// Same result as RayStaticRangeBruteForce.
   double Cast(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, double max_range_m) const;
   const StaticGeometry& geometry() const { return geometry_; }

@@ -115,23 +115,29 @@ double StaticGeometryIndex::Cast(const Eigen::Vector2d& o, const Eigen::Vector2d
   int ix = std::clamp(static_cast<int>(std::floor((p.x() - lo_.x()) / cell_m_)), 0, nx_ - 1);
   int iy = std::clamp(static_cast<int>(std::floor((p.y() - lo_.y()) / cell_m_)), 0, ny_ - 1);
   const int step_x = d.x() > 0 ? 1 : -1, step_y = d.y() > 0 ? 1 : -1;
-  // Ray parameter where it leaves the current column / row (computed afresh, not accumulated).
-  auto exit_x = [&](int i) { return d.x() == 0.0 ? kNoHit : (lo_.x() + (i + (d.x() > 0)) * cell_m_ - o.x()) / d.x(); };
-  auto exit_y = [&](int i) { return d.y() == 0.0 ? kNoHit : (lo_.y() + (i + (d.y() > 0)) * cell_m_ - o.y()) / d.y(); };
+  // Ray parameter where it leaves the current column / row, and its growth per cell.
+  const double inf = std::numeric_limits<double>::infinity();
+  double t_max_x = d.x() == 0.0 ? inf : (lo_.x() + (ix + (d.x() > 0)) * cell_m_ - o.x()) / d.x();
+  double t_max_y = d.y() == 0.0 ? inf : (lo_.y() + (iy + (d.y() > 0)) * cell_m_ - o.y()) / d.y();
+  const double t_delta_x = d.x() == 0.0 ? inf : cell_m_ / std::abs(d.x());
+  const double t_delta_y = d.y() == 0.0 ? inf : cell_m_ / std::abs(d.y());
   double best = kNoHit;
   while (true) {
     const size_t c = static_cast<size_t>(iy) * nx_ + ix;
-    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) best = std::min(best, TestItem(items_[k], o, d, max_range_m));
-    const double tx = exit_x(ix), ty = exit_y(iy);
-    const double t_exit = std::min(tx, ty);
-    // Hits in later cells lie at t >= t_exit; the margin covers rounding of t_exit.
-    if (best < t_exit - 1e-9 * (1.0 + t_exit) || t_exit > t1) break;
-    if (tx < ty) {
+    // Clipping the range to the best hit so far (as b2World::RayCast does) leaves the minimum unchanged.
+    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+      best = std::min(best, TestItem(items_[k], o, d, std::min(best, max_range_m)));
+    const double t_exit = std::min(t_max_x, t_max_y);
+    // Hits in later cells lie at t >= t_exit; the margin covers the rounding of t_exit.
+    if (t_exit > t1 || best < t_exit - 1e-9 * (1.0 + t_exit)) break;
+    if (t_max_x < t_max_y) {
       ix += step_x;
       if (ix < 0 || ix >= nx_) break;
+      t_max_x += t_delta_x;
     } else {
       iy += step_y;
       if (iy < 0 || iy >= ny_) break;
+      t_max_y += t_delta_y;
     }
   }
   return best;
