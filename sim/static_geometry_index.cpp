@@ -28,6 +28,7 @@ bool SegmentTouchesBox(const Segment& s, const Eigen::Vector2d& lo, const Eigen:
 
 StaticGeometryIndex::StaticGeometryIndex(StaticGeometry geometry, double cell_m)
     : geometry_(std::move(geometry)), cell_m_(cell_m) {
+  for (const Segment& s : geometry_.segments) segment_rays_.push_back(MakeSegmentRay(s.a, s.b));
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::Vector2d lo(inf, inf), hi(-inf, -inf);
   for (const Segment& s : geometry_.segments) {
@@ -88,39 +89,40 @@ StaticGeometryIndex::StaticGeometryIndex(StaticGeometry geometry, double cell_m)
 double StaticGeometryIndex::TestItem(int item, const Eigen::Vector2d& o, const Eigen::Vector2d& d,
                                      double max_range_m) const {
   const int num_segments = static_cast<int>(geometry_.segments.size());
-  if (item < num_segments) {
-    const Segment& s = geometry_.segments[item];
-    return RaySegmentRange(o, d, max_range_m, s.a, s.b);
-  }
+  if (item < num_segments) return RaySegmentRange(o, d, max_range_m, segment_rays_[item]);
   const Circle& c = geometry_.circles[item - num_segments];
   return RayCircleRange(o, d, max_range_m, c.center, c.radius_m);
 }
 
 double StaticGeometryIndex::Cast(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m) const {
   if (nx_ == 0) return kNoHit;
-  // Clip the ray [0, max_range_m] to the grid's box (slab test).
   const Eigen::Vector2d hi = lo_ + cell_m_ * Eigen::Vector2d(nx_, ny_);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double inv_x = 1.0 / d.x(), inv_y = 1.0 / d.y();  // +-inf for an axis-parallel ray
   double t0 = 0.0, t1 = max_range_m;
-  for (int a = 0; a < 2; ++a) {
-    if (d[a] == 0.0) {
-      if (o[a] < lo_[a] || o[a] > hi[a]) return kNoHit;
-      continue;
+  if (o.x() < lo_.x() || o.x() > hi.x() || o.y() < lo_.y() || o.y() > hi.y()) {
+    // Origin outside the grid: clip the ray [0, max_range_m] to the grid's box (slab test).
+    for (int a = 0; a < 2; ++a) {
+      if (d[a] == 0.0) {
+        if (o[a] < lo_[a] || o[a] > hi[a]) return kNoHit;
+        continue;
+      }
+      const double inv = a == 0 ? inv_x : inv_y;
+      const double ta = (lo_[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
+      t0 = std::max(t0, std::min(ta, tb));
+      t1 = std::min(t1, std::max(ta, tb));
     }
-    const double ta = (lo_[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
+    if (t0 > t1) return kNoHit;
   }
-  if (t0 > t1) return kNoHit;
-  const Eigen::Vector2d p = o + t0 * d;
-  int ix = std::clamp(static_cast<int>(std::floor((p.x() - lo_.x()) / cell_m_)), 0, nx_ - 1);
-  int iy = std::clamp(static_cast<int>(std::floor((p.y() - lo_.y()) / cell_m_)), 0, ny_ - 1);
+  const double inv_cell = 1.0 / cell_m_;
+  int ix = std::clamp(static_cast<int>(std::floor((o.x() + t0 * d.x() - lo_.x()) * inv_cell)), 0, nx_ - 1);
+  int iy = std::clamp(static_cast<int>(std::floor((o.y() + t0 * d.y() - lo_.y()) * inv_cell)), 0, ny_ - 1);
   const int step_x = d.x() > 0 ? 1 : -1, step_y = d.y() > 0 ? 1 : -1;
   // Ray parameter where it leaves the current column / row, and its growth per cell.
-  const double inf = std::numeric_limits<double>::infinity();
-  double t_max_x = d.x() == 0.0 ? inf : (lo_.x() + (ix + (d.x() > 0)) * cell_m_ - o.x()) / d.x();
-  double t_max_y = d.y() == 0.0 ? inf : (lo_.y() + (iy + (d.y() > 0)) * cell_m_ - o.y()) / d.y();
-  const double t_delta_x = d.x() == 0.0 ? inf : cell_m_ / std::abs(d.x());
-  const double t_delta_y = d.y() == 0.0 ? inf : cell_m_ / std::abs(d.y());
+  double t_max_x = d.x() == 0.0 ? inf : (lo_.x() + (ix + (d.x() > 0)) * cell_m_ - o.x()) * inv_x;
+  double t_max_y = d.y() == 0.0 ? inf : (lo_.y() + (iy + (d.y() > 0)) * cell_m_ - o.y()) * inv_y;
+  const double t_delta_x = d.x() == 0.0 ? inf : cell_m_ * std::abs(inv_x);
+  const double t_delta_y = d.y() == 0.0 ? inf : cell_m_ * std::abs(inv_y);
   double best = kNoHit;
   while (true) {
     const size_t c = static_cast<size_t>(iy) * nx_ + ix;
