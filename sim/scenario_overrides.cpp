@@ -26,7 +26,7 @@ bool ParseIndex(const std::string& text, std::size_t& index) {
 }
 
 void ApplyOne(YAML::Node& root, const std::string& text, YamlSource& src) {
-  const std::string where = "--set " + text;
+  const std::string where = src.file + " (--set " + text + ")";
   const std::size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError(where, 0, "an override must look like key=value", "write e.g. --set robot.laps=3");

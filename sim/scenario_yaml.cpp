@@ -94,7 +94,7 @@ int LineOf(const YamlSource& src, const YAML::Node& node) {
 void Fail(const YamlSource& src, const YAML::Node& at, const std::string& problem, const std::string& fix) {
   if (at.IsDefined())
     if (const std::string* text = OverrideOf(src, at))
-      throw InputError(src.file + " (" + *text + ")", 0, problem, fix);
+      throw InputError(*text, 0, problem, fix);
   throw InputError(src.file, LineOf(src, at), problem, fix);
 }
 

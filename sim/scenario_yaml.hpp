@@ -12,7 +12,8 @@
 namespace slambox {
 
 /// Where the tree came from: the file (or "builtin:NAME") and the `--set` values that
-/// were grafted into it (each value node with its "--set key=value" text).
+/// were grafted into it (each value node with "FILE (--set key=value)", used as the
+/// file name in errors about it).
 struct YamlSource {
   std::string file;
   std::vector<std::pair<YAML::Node, std::string>> overrides;
