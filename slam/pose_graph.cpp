@@ -12,6 +12,8 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "slam/angle_manifold.hpp"
+#include "slam/dcs_loss.hpp"
 #include "slam/pose_graph_cost.hpp"
 
 namespace slambox {

@@ -8,6 +8,8 @@
 
 #include "slam/g2o_io.hpp"
 #include "slam/pose_graph.hpp"
+#include "slam/angle_manifold.hpp"
+#include "slam/dcs_loss.hpp"
 #include "slam/pose_graph_cost.hpp"
 #include "slam/pose_graph_init.hpp"
 #include "tests/slam/pose_graph_test_support.hpp"
