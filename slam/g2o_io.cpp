@@ -1,6 +1,7 @@
 #include "slam/g2o_io.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -30,8 +32,8 @@ const char* kTagsFix = "use VERTEX_SE2, EDGE_SE2, FIX (g2o) or VERTEX2, EDGE2 (T
 
 class LineParser {
  public:
-  LineParser(const std::string& file, int line, const std::string& tag, std::vector<std::string> tokens)
-      : file_(file), line_(line), tag_(tag), tokens_(std::move(tokens)) {}
+  LineParser(const std::string& file, int line, const std::vector<std::string>& tokens)
+      : file_(file), line_(line), tag_(tokens[0]), tokens_(tokens) {}
 
   void ExpectCount(size_t count, const std::string& form) const {
     if (tokens_.size() != count)
@@ -67,9 +69,21 @@ class LineParser {
  private:
   const std::string& file_;
   int line_;
-  std::string tag_;
-  std::vector<std::string> tokens_;
+  const std::string& tag_;
+  const std::vector<std::string>& tokens_;
 };
+
+void SplitWords(std::string_view line, std::vector<std::string>* words) {
+  words->clear();
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) words->emplace_back(line.substr(i, j - i));
+    i = j;
+  }
+}
 
 // Information over (dx, dy, dtheta) from the file's six values in g2o or TORO order.
 Eigen::Matrix3d Information(const LineParser& p, bool toro) {
@@ -90,17 +104,17 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
   std::map<long long, RawVertex> vertices;
   std::vector<RawEdge> edges;
   std::vector<std::pair<long long, int>> fixed_ids;
-  std::istringstream in(text);
-  std::string line_text;
   int line = 0;
-  while (std::getline(in, line_text)) {
+  std::vector<std::string> tokens;
+  for (size_t pos = 0; pos < text.size();) {
     ++line;
-    std::istringstream words(line_text);
-    std::vector<std::string> tokens;
-    for (std::string w; words >> w;) tokens.push_back(w);
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    SplitWords(std::string_view(text).substr(pos, end - pos), &tokens);
+    pos = end + 1;
     if (tokens.empty() || tokens[0][0] == '#') continue;
     const std::string& tag = tokens[0];
-    LineParser p(name, line, tag, tokens);
+    LineParser p(name, line, tokens);
     if (tag == "VERTEX_SE2" || tag == "VERTEX2") {
       p.ExpectCount(5, tag + " id x y theta");
       const long long id = p.Id(1);
