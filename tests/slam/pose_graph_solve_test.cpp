@@ -122,6 +122,9 @@ TEST(SolvePoseGraph, RejectsEdgesToMissingPosesAndNonPositiveDefiniteInformation
   PoseGraph bad_anchor = s.graph;
   bad_anchor.anchor = -1;
   EXPECT_THROW(SolvePoseGraph(bad_anchor), InputError);
+  PoseGraph nan_pose = s.graph;
+  nan_pose.poses[4].x = NAN;
+  EXPECT_THROW(SolvePoseGraph(nan_pose), InputError);
 }
 
 TEST(SolvePoseGraph, IntelReachesReferenceOptimum) {
