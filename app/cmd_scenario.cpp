@@ -23,7 +23,7 @@ std::string Needs(const SensorNeeds& needs) {
   add(needs.odometry, "odometry");
   add(needs.lidar, "lidar");
   add(needs.landmarks, "landmarks");
-  return out.empty() ? "-" : out;
+  return "[" + (out.empty() ? std::string("-") : out) + "]";
 }
 
 void PrintScenarios() {

@@ -133,6 +133,7 @@ RobotSpec ParseRobot(const YamlSource& src, const YAML::Node& n) {
     const YAML::Node k = n["kidnap"];
     CheckMap(src, k, "robot.kidnap");
     KidnapSpec kidnap;
+    kidnap.line = LineOf(src, k);
     kidnap.at_s = ReadDouble(src, Required(src, k, "robot.kidnap", "at_s", "at_s: 60"), "robot.kidnap.at_s", AtLeast(0));
     kidnap.to = ParsePose(src, Required(src, k, "robot.kidnap", "to", "to: {x: 5, y: 5, theta_deg: 90}"),
                           "robot.kidnap.to");

@@ -137,6 +137,21 @@ TEST(Scenario, ShowThenLoadRoundTripsExactly) {
   EXPECT_EQ(b.robot.radius_m, 0.1 + 0.2);
 }
 
+TEST(Scenario, LoadFromTextGivesTheSameAsFromItsFile) {
+  // A stream header stores ScenarioToYaml(); LoadScenarioText reads it back.
+  const Scenario a = LoadScenario("dynamic");
+  const Scenario b = LoadScenarioText(ScenarioToYaml(a), "stream header", {"robot.laps=1"});
+  EXPECT_EQ(b.robot.laps, 1);
+  EXPECT_EQ(b.source, "stream header");
+  EXPECT_EQ(b.movers.size(), a.movers.size());
+  try {
+    LoadScenarioText("version: 3\nrobot: {path: [[1, 0]]}\n", "stream header");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("stream header:1: unsupported scenario version 3"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Scenario, ShowFillsEveryDefault) {
   testing::TempDir dir;
   const Scenario s = LoadScenario(dir.Write("min.yaml",
