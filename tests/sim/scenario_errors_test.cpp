@@ -1,6 +1,7 @@
 // Every schema error is an InputError naming the file, the line and a fix.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -209,6 +210,46 @@ TEST(ScenarioErrors, NoSuchScenario) {
     EXPECT_NE(std::string(e.what()).find("no such scenario file or built-in"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("loop, maze"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace slambox
+
+namespace slambox {
+namespace {
+
+// Robustness: random edits of valid scenario text either load or throw InputError;
+// no other exception escapes (yaml-cpp's own exceptions are all translated).
+TEST(ScenarioErrors, RandomEditsGiveInputErrorsOnly) {
+  std::mt19937_64 rng(42);
+  const std::string alphabet = " :-[]{},.0a#\n\t\"'&*!|>";
+  int errors = 0, loaded = 0;
+  for (const auto& b : BuiltinScenarios()) {
+    const std::string text = ScenarioToYaml(LoadScenario(b.name));
+    for (int trial = 0; trial < 60; ++trial) {
+      std::string edited = text;
+      const int edits = 1 + static_cast<int>(rng() % 3);
+      for (int e = 0; e < edits; ++e) {
+        const std::size_t at = rng() % edited.size();
+        switch (rng() % 3) {
+          case 0: edited.erase(at, 1 + rng() % 8); break;
+          case 1: edited.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
+          default: edited[at] = alphabet[rng() % alphabet.size()]; break;
+        }
+      }
+      try {
+        LoadScenarioText(edited, "edited", {});
+        ++loaded;
+      } catch (const InputError& e) {
+        ++errors;
+        EXPECT_NE(std::string(e.what()).find("fix: "), std::string::npos) << e.what();
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "non-InputError " << e.what() << " for:\n" << edited;
+      }
+    }
+  }
+  EXPECT_GT(errors, 50);  // the edits do break files; the test exercises the error paths
+  EXPECT_GT(loaded, 10);
 }
 
 }  // namespace
