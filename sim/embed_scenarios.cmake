@@ -15,13 +15,13 @@ endforeach()
 set(content "// Generated from scenarios/*.yaml by sim/embed_scenarios.cmake. Do not edit.
 #include \"sim/scenario_yaml.hpp\"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 const std::vector<EmbeddedScenario>& EmbeddedScenarios() {
   static const std::vector<EmbeddedScenario> scenarios = {
 ${body}  };
   return scenarios;
 }
-}  // namespace slambox
+}  // namespace slambox::scenario_detail
 ")
 file(WRITE ${OUTPUT}.tmp "${content}")
 file(COPY_FILE ${OUTPUT}.tmp ${OUTPUT} ONLY_IF_DIFFERENT)

@@ -11,7 +11,7 @@
 #include "core/error.hpp"
 #include "sim/scenario_yaml.hpp"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 namespace {
 
 using Vec = Eigen::Vector2d;
@@ -177,4 +177,4 @@ void CheckScenarioGeometry(const Scenario& s) {
   }
 }
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail

@@ -8,6 +8,7 @@
 #include "sim/scenario_yaml.hpp"
 
 namespace slambox {
+using namespace scenario_detail;
 namespace {
 
 std::string BuiltinNames() {

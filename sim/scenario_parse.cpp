@@ -4,7 +4,7 @@
 
 #include "sim/scenario_yaml.hpp"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 namespace {
 
 std::string Item(const std::string& list, std::size_t i) { return list + "[" + std::to_string(i) + "]"; }
@@ -175,4 +175,4 @@ Scenario ParseScenario(const YAML::Node& root, const YamlSource& src) {
   return s;
 }
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail

@@ -7,7 +7,7 @@
 #include "core/error.hpp"
 #include "sim/scenario_yaml.hpp"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 
 const std::vector<std::string>* ScenarioKeysAt(const std::string& path) {
   static const std::map<std::string, std::vector<std::string>> kKeys = {
@@ -202,4 +202,4 @@ bool GetBool(const YamlSource& src, const YAML::Node& map, const std::string& pa
   return v.IsDefined() ? ReadBool(src, v, Dotted(path, key)) : fallback;
 }
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail
