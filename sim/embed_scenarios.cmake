@@ -27,5 +27,4 @@ ${body}  };
 }
 }  // namespace slambox::scenario_detail
 ")
-file(WRITE ${OUTPUT}.tmp "${content}")
-file(COPY_FILE ${OUTPUT}.tmp ${OUTPUT} ONLY_IF_DIFFERENT)
+file(WRITE ${OUTPUT} "${content}")
