@@ -1,11 +1,13 @@
 // `slambox scenarios`, `scenario show`, `algorithms [--params]` through the CLI11 app.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <sstream>
 
 #include "app/commands.hpp"
 #include "app/registry.hpp"
 #include "core/error.hpp"
+#include "core/stream_io.hpp"
 #include "sim/scenario.hpp"
 
 namespace slambox {
@@ -57,6 +59,17 @@ TEST(CmdScenario, ShowPrintsTheResolvedScenarioWithOverrides) {
   EXPECT_THROW(RunCommand({"scenario", "show", "no-such-scenario"}), InputError);
   EXPECT_THROW(RunCommand({"scenario", "show"}), CLI::RequiredError);
   EXPECT_THROW(RunCommand({"scenario"}), CLI::RequiredError);
+}
+
+TEST(CmdScenario, ShowReadsTheScenarioOfAStream) {
+  Stream stream;
+  stream.header.scenario_name = "tunnel";
+  stream.header.scenario_yaml = ScenarioToYaml(LoadScenario("tunnel"));
+  const std::string path = ::testing::TempDir() + "/cmd_scenario_show.stream";
+  WriteStream(stream, path);
+  EXPECT_EQ(RunCommand({"scenario", "show", path}), stream.header.scenario_yaml);
+  EXPECT_NE(RunCommand({"scenario", "show", path, "--set", "robot.laps=2"}).find("laps: 2"), std::string::npos);
+  std::remove(path.c_str());
 }
 
 TEST(CmdScenario, AlgorithmsListsModulesAndParams) {
