@@ -81,6 +81,20 @@ TEST(EkfSlam, ClutterDoesNotBecomeMap) {
   EXPECT_GT(created, 100.0);
 }
 
+TEST(EkfSlam, DeterministicAndKnownIdClutterIgnored) {
+  const World world = LandmarkWorld();
+  Stream stream = MakeSyntheticStream(LandmarkOptions(8, 1), world);
+  AddClutter(stream, 1, 5);  // id -1 with known ids: the detector's false alarms
+  const Estimate a = RunEkf(stream), b = RunEkf(stream);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (size_t i = 0; i < a.trajectory.size(); ++i) {
+    EXPECT_EQ(a.trajectory[i].pose.vector(), b.trajectory[i].pose.vector());
+    EXPECT_EQ(a.trajectory[i].covariance, b.trajectory[i].covariance);
+  }
+  EXPECT_EQ(a.landmarks.size(), world.landmarks.size());
+  EXPECT_LT(AteRmse(stream, a), OdometryAte(stream) / 5.0);
+}
+
 TEST(EkfSlam, CovarianceStaysSymmetricPsdOverALongRun) {
   const World world = LandmarkWorld();
   const Stream stream = MakeSyntheticStream(LandmarkOptions(6, 6), world);
