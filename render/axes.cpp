@@ -145,9 +145,13 @@ void DrawFrame(Canvas& c, const Axes& a, const AxesLabels& labels, const FigureS
     v.v = VAlign::kBottom;
     c.Text(r.left - tick_len - 12 - max_label_w, 0.5 * (r.top + r.bottom), labels.y_label, v);
   }
-  if (!labels.title.empty())
-    c.Text(0.5 * (r.left + r.right), r.top - 12,
-           labels.title, {.size_px = st.title_px, .h = HAlign::kCenter, .v = VAlign::kBaseline, .weight = FontWeight::kBold});
+  if (!labels.title.empty()) {
+    // Shrink a long title to fit the canvas rather than clip it.
+    const double w = TextWidth(labels.title, st.title_px, FontWeight::kBold), room = c.width() - 20.0;
+    const double size = w > room ? st.title_px * room / w : st.title_px;
+    const double cx = std::clamp(0.5 * (r.left + r.right), 10.0 + 0.5 * std::min(w, room), c.width() - 10.0 - 0.5 * std::min(w, room));
+    c.Text(cx, r.top - 14, labels.title, {.size_px = size, .h = HAlign::kCenter, .v = VAlign::kBaseline, .weight = FontWeight::kBold});
+  }
 }
 
 void DrawScaleBar(Canvas& c, const Axes& a, double x, double y, double max_len_px, const FigureStyle& st) {

@@ -12,11 +12,12 @@ namespace slambox::render {
 
 /// Font sizes and strokes shared by every figure [px].
 struct FigureStyle {
-  double title_px = 20.0;
-  double label_px = 17.0;
-  double tick_px = 15.0;
-  double legend_px = 15.0;
-  double frame_width_px = 1.2;
+  // Sized for a 1000-1200 px wide figure shrunk to one column of a paper (~8 pt text).
+  double title_px = 24.0;
+  double label_px = 21.0;
+  double tick_px = 19.0;
+  double legend_px = 19.0;
+  double frame_width_px = 1.4;
   double grid_width_px = 1.0;
 };
 

@@ -9,7 +9,7 @@ namespace slambox::render {
 
 Rgba SeriesColor(int i) {
   static constexpr std::array<Rgba, 6> kSeries{color::kBlue, color::kVermillion, color::kBluishGreen,
-                                               color::kReddishPurple, color::kOrange, color::kSkyBlue};
+                                               color::kReddishPurple, color::kSkyBlue, color::kOrange};
   return kSeries[static_cast<size_t>(((i % 6) + 6) % 6)];
 }
 
