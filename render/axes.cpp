@@ -95,6 +95,11 @@ std::vector<double> YTicks(const Axes& a) {
   return a.log_y ? LogTicks(a.y0, a.y1) : NiceTicks(a.y0, a.y1, std::max(3, static_cast<int>((a.area.bottom - a.area.top) / 90)));
 }
 std::vector<double> XTicks(const Axes& a) {
+  if (!a.x_categories.empty()) {
+    std::vector<double> t;
+    for (const auto& [x, label] : a.x_categories) t.push_back(x);
+    return t;
+  }
   return NiceTicks(a.x0, a.x1, std::max(3, static_cast<int>((a.area.right - a.area.left) / 110)));
 }
 }  // namespace
@@ -122,7 +127,10 @@ void DrawFrame(Canvas& c, const Axes& a, const AxesLabels& labels, const FigureS
   for (double x : xt) {
     const double px = a.ToPixel(x, a.log_y ? a.y0 : 0.0).x();
     c.Line({px, r.bottom}, {px, r.bottom + tick_len}, frame);
-    c.Text(px, r.bottom + tick_len + 5, FormatTick(x, xstep), tick_text);
+    std::string label = FormatTick(x, xstep);
+    for (const auto& [cx, text] : a.x_categories)
+      if (cx == x) label = text;
+    c.Text(px, r.bottom + tick_len + 5, label, tick_text);
   }
   tick_text.h = HAlign::kRight;
   tick_text.v = VAlign::kMiddle;

@@ -29,6 +29,8 @@ struct Axes {
   PlotArea area;
   double x0 = 0, x1 = 1, y0 = 0, y1 = 1;  ///< data range shown (y0 at the bottom)
   bool log_y = false;                     ///< y on a log10 scale (y0, y1 > 0)
+  /// Categorical x: ticks at these positions with these labels instead of round numbers.
+  std::vector<std::pair<double, std::string>> x_categories;
   Eigen::Vector2d ToPixel(double x, double y) const;
   Eigen::Vector2d ToPixel(const Eigen::Vector2d& p) const { return ToPixel(p.x(), p.y()); }
   double PixelsPerUnitX() const { return (area.right - area.left) / (x1 - x0); }

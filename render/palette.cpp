@@ -13,6 +13,13 @@ Rgba SeriesColor(int i) {
   return kSeries[static_cast<size_t>(((i % 6) + 6) % 6)];
 }
 
+Rgba ModuleColor(const std::vector<std::string>& modules, size_t i) {
+  if (modules.at(i) == "odometry") return color::kOrange;
+  int k = 0;
+  for (size_t j = 0; j < i; ++j) k += modules[j] != "odometry";
+  return SeriesColor(k % 5);  // orange (the 6th) stays odometry's
+}
+
 Rgba Viridis(double u) {
   // Anchors sampled from matplotlib's viridis at u = 0, 1/8, ..., 1.
   static constexpr std::array<Rgba, 9> kAnchors{

@@ -12,11 +12,11 @@ constexpr Rgba kMoverColor{0.800, 0.475, 0.655, 0.8};
 }  // namespace
 
 SeriesStyle AlgorithmStyle(const RunFolder& run, size_t index) {
-  const std::string& name = run.algorithms.at(index).name;
-  if (name == "odometry") return {name, {color::kOrange, 2.2, {10, 6}}};  // the baseline: dashed
-  int k = 0;
-  for (size_t i = 0; i < index; ++i) k += run.algorithms[i].name != "odometry";
-  return {name, {SeriesColor(k), 2.6, {}}};
+  std::vector<std::string> names;
+  for (const auto& a : run.algorithms) names.push_back(a.name);
+  const std::string& name = names.at(index);
+  if (name == "odometry") return {name, {ModuleColor(names, index), 2.2, {10, 6}}};  // the baseline: dashed
+  return {name, {ModuleColor(names, index), 2.6, {}}};
 }
 
 // Thin and drawn last: the reference stays visible, estimates show as colour on either side.
