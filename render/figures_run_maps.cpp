@@ -60,7 +60,7 @@ void DrawGrid(Canvas& c, const Axes& axes, const OccupancyGrid& g) {
 
 }  // namespace
 
-bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of) {
+bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of, double now_s) {
   if (run.groundtruth.empty() && std::none_of(run.algorithms.begin(), run.algorithms.end(),
                                               [](const auto& a) { return !a.trajectory.empty(); }))
     return false;
@@ -69,7 +69,7 @@ bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const
   for (size_t i = 0; i < run.algorithms.size(); ++i)
     if (!run.algorithms[i].trajectory.empty()) legend.push_back(LineEntry(AlgorithmStyle(run, i)));
   legend.push_back({.label = "start", .line = {{}, 0.0, {}}, .marker = MarkerShape::kTriangle, .marker_color = color::kYellow});
-  legend.push_back({.label = "end", .line = {{}, 0.0, {}}, .marker = MarkerShape::kSquare, .marker_color = Rgba{0.5, 0.5, 0.5}});
+  legend.push_back({.label = now_s >= 0 ? "now" : "end", .line = {{}, 0.0, {}}, .marker = MarkerShape::kSquare, .marker_color = Rgba{0.5, 0.5, 0.5}});
   if (run.has_world)
     for (const auto& e : WorldLegend(run.world)) legend.push_back(e);
 
@@ -90,7 +90,7 @@ bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const
   const auto& start_src = !run.groundtruth.empty() ? run.groundtruth : run.algorithms.front().trajectory;
   if (!start_src.empty())
     DrawMarker(fig.canvas, fig.axes.ToPixel(start_src.front().pose.translation()), MarkerShape::kTriangle, 18.0, color::kYellow);
-  fig.Finish(RunTitle(run, "Trajectories"), legend);
+  fig.Finish(RunTitle(run, "Trajectories") + (now_s >= 0 ? ", " + FormatSeconds(now_s) : ""), legend);
   SaveFigure(fig.canvas, stem);
   return true;
 }
