@@ -1,5 +1,6 @@
 #include "slam/fastslam.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -53,6 +54,14 @@ std::mt19937_64 MakeGenerator(std::uint64_t seed, const std::string& name) {
   return std::mt19937_64(seq);
 }
 
+// Covariance of the odometry increment with rot1 and rot2 folded to the nearest of 0 and
+// pi (AMCL's treatment of Thrun's model): a tiny or backward translation decomposes
+// into rot1 ~ pi, rot2 ~ -pi, which must not count as two half turns of rotation noise.
+Eigen::Matrix3d FoldedIncrementCovariance(const OdometryIncrement& u, const std::array<double, 4>& alpha) {
+  auto fold = [](double a) { return std::min(std::abs(a), M_PI - std::abs(a)); };
+  return IncrementCovariance({fold(u.rot1), u.trans, fold(u.rot2)}, alpha);
+}
+
 }  // namespace
 
 FastSlam::FastSlam(const FastSlamConfig& config, bool fastslam2)
@@ -91,7 +100,7 @@ void FastSlam::Start(const StreamHeader& header) {
 
 void FastSlam::OnOdometry(const OdometryEvent& odometry) {
   const OdometryIncrement u = Decompose(odometry.delta);
-  const Eigen::Matrix3d M = config_.motion_noise_scale * IncrementCovariance(u, alpha_);
+  const Eigen::Matrix3d M = config_.motion_noise_scale * FoldedIncrementCovariance(u, alpha_);
   const Eigen::Vector3d sd = M.diagonal().cwiseSqrt();
   std::normal_distribution<double> n01(0.0, 1.0);
   for (FastSlamParticle& p : particles_) {
