@@ -5,11 +5,13 @@
 // Metrics (computed here, DESIGN.md's definitions): ate_rmse_m at matched timestamps, no
 // alignment; anees = mean pose NEES (3 dof); landmark_rmse_m by id (known ids); with
 // unknown ids every estimated landmark is matched to its nearest true one: duplicates
-// (a second estimate for one post) and spurious (> 1 m from every post).
+// (a second estimate for one post) and spurious (> 1 m from every post). Per-seed lines
+// go to stderr.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/LU>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "sim/simulate.hpp"
@@ -94,6 +96,8 @@ void BM_Landmarks(benchmark::State& state) {
       const Stream& s = StreamFor(variant, seed);
       auto module = Make(algo);
       all.push_back(Score(Replay(*module, s), s, variant == 0));
+      std::fprintf(stderr, "variant %d algo %d seed %d: ate %.4f m, anees %.2f, duplicates %d, spurious %d\n", variant,
+                   algo, seed, all.back().ate, all.back().anees, all.back().duplicates, all.back().spurious);
     }
     double ate = 0, ate2 = 0, anees = 0, lm = 0, worst = 0;
     int dup = 0, spur = 0, count = 0;

@@ -25,7 +25,8 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
   b.Bind("report_min_counter", c.report_min_counter, "-", "unknown ids: report landmarks whose counter reached this");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
-  b.Bind("trajectory", c.trajectory, {"best", "mean"}, "output the best particle's path or the weighted mean");
+  b.Bind("trajectory", c.trajectory, {"best", "mean", "path_mean"},
+         "best particle's path | filtered weighted mean | weighted mean of the final particles' paths");
 }
 void BindParams(FastSlam2Config& c, ParamBinder& b) { BindParams(static_cast<FastSlamConfig&>(c), b); }
 
@@ -41,6 +42,8 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
   if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
   if (c.snapshot_period_s < 0) fail("snapshot_period_s", "must not be negative", "0 disables snapshots");
+  if (c.trajectory != "best" && c.trajectory != "mean" && c.trajectory != "path_mean")
+    fail("trajectory", "unknown choice '" + c.trajectory + "'", "use best, mean or path_mean");
   if (c.visibility_margin_m < 0 || c.candidate_margin_m < 0) fail("visibility_margin_m", "margins must not be negative", "e.g. 0.5");
 }
 
@@ -133,6 +136,8 @@ void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
   for (size_t i = 0; i < particles_.size(); ++i) particles_[i].log_weight = std::log(w[i]);
   if (fastslam2_) RecordCloud(t);
 
+  const bool snapshot = config_.snapshot_period_s > 0 && t >= next_snapshot_s_;
+  if (snapshot) Diagnose(t, "map_tree_nodes", static_cast<double>(MapTreeNodes()));  // peak: before resampling
   const double neff = EffectiveSampleSize(w);
   const bool resample = neff < config_.neff_threshold * static_cast<double>(particles_.size());
   if (resample) {  // children share their parent's map tree and path: O(M) pointer copies
@@ -150,7 +155,7 @@ void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
   Diagnose(t, "resampled", resample ? 1.0 : 0.0);
   Diagnose(t, "landmarks", particles_[BestParticle()].map.size);
 
-  if (config_.snapshot_period_s > 0 && t >= next_snapshot_s_) {
+  if (snapshot) {
     ParticleSnapshot snap{t, {}, {}};
     const std::vector<double> w_now = NormalizeLogWeights([&] {
       std::vector<double> lw;
@@ -160,7 +165,6 @@ void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
     for (const FastSlamParticle& p : particles_) snap.poses.push_back(p.pose);
     snap.weights = w_now;
     estimate_.particles.push_back(std::move(snap));
-    Diagnose(t, "map_tree_nodes", static_cast<double>(MapTreeNodes()));
     next_snapshot_s_ = t + config_.snapshot_period_s;
   }
 }
@@ -203,11 +207,39 @@ size_t FastSlam::MapTreeNodes() const {
   return CountDistinctNodes(trees);
 }
 
+// The smoothed path: at each time, the weighted mean and covariance of the final
+// particles' ancestral poses (every particle's path has the same times).
+std::vector<PoseEstimate> FastSlam::PathMean() const {
+  std::vector<double> log_w;
+  for (const FastSlamParticle& p : particles_) log_w.push_back(p.log_weight);
+  const std::vector<double> w = NormalizeLogWeights(log_w);
+  std::vector<std::vector<const PathNode*>> paths;
+  for (const FastSlamParticle& p : particles_) paths.push_back(PathPoses(p.path));
+  std::vector<PoseEstimate> out;
+  for (size_t k = 0; k < paths.front().size(); ++k) {
+    double x = 0, y = 0, s = 0, c = 0;
+    for (size_t i = 0; i < w.size(); ++i) {
+      const SE2& q = paths[i][k]->pose;
+      x += w[i] * q.x, y += w[i] * q.y, s += w[i] * std::sin(q.theta), c += w[i] * std::cos(q.theta);
+    }
+    PoseEstimate e{paths.front()[k]->t_s, SE2(x, y, std::atan2(s, c)), Eigen::Matrix3d::Zero(), true};
+    for (size_t i = 0; i < w.size(); ++i) {
+      const SE2& q = paths[i][k]->pose;
+      const Eigen::Vector3d d(q.x - x, q.y - y, NormalizeAngle(q.theta - e.pose.theta));
+      e.covariance += w[i] * d * d.transpose();
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
 Estimate FastSlam::Finish() {
   if (particles_.empty()) return std::move(estimate_);
   const FastSlamParticle& best = particles_[BestParticle()];
   if (config_.trajectory == "mean") {
     estimate_.trajectory = cloud_;
+  } else if (config_.trajectory == "path_mean") {
+    estimate_.trajectory = PathMean();
   } else {  // the best particle's ancestry, with the cloud's covariance at the same times
     size_t k = 0;
     for (const PathNode* n : PathPoses(best.path)) {

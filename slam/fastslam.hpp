@@ -8,11 +8,12 @@
 // end (its ancestry's poses at every odometry event; ties on the weight are broken by
 // the lineage's total likelihood), with, at each time, the covariance of the weighted
 // particle cloud (plus the mean of the 2.0 proposal priors) around the weighted mean,
-// for NEES. `trajectory = mean` outputs the weighted mean pose instead. Landmarks are
+// for NEES. `trajectory = mean` outputs the filtered weighted mean pose instead,
+// `path_mean` the weighted mean of the final particles' ancestral paths. Landmarks are
 // the best particle's map. Diagnostics per landmark scan: neff (before resampling),
 // distinct_ancestors (initial particles with living descendants), resampled (0/1),
 // landmarks (best particle's map size); map_tree_nodes (distinct live tree nodes of all
-// particles) at each particle snapshot.
+// particles, before resampling) at each particle snapshot.
 #include <array>
 #include <random>
 #include <string>
@@ -36,7 +37,7 @@ struct FastSlamConfig {
   int report_min_counter = 3;        ///< unknown ids: report landmarks whose counter reached this
   double motion_noise_scale = 1.0;   ///< factor on the odometry model's covariance
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
-  std::string trajectory = "best";   ///< best | mean: which pose goes into Estimate::trajectory
+  std::string trajectory = "best";   ///< best | mean | path_mean: what goes into Estimate::trajectory
 };
 void BindParams(FastSlamConfig& c, ParamBinder& b);
 
@@ -62,6 +63,7 @@ class FastSlam : public SlamModule {
   void RecordCloud(double t_s);
   void Diagnose(double t_s, const std::string& name, double value) { estimate_.diagnostics[name].emplace_back(t_s, value); }
   int BestParticle() const;
+  std::vector<PoseEstimate> PathMean() const;
 
   FastSlamConfig config_;
   bool fastslam2_;

@@ -140,7 +140,6 @@ TEST(FastSlamAssociation, FastSlam2ProposalPullsThePoseTowardsTheObservation) {
   ParticleUpdateOptions o = UnknownIds(true);
   o.log_p0 = -20;
   FastSlamParticle p = ParticleWith({{5, 0}});
-  FindLandmark(p.map, 0);
   LandmarkGaussian sharp = *FindLandmark(p.map, 0);
   sharp.covariance = Eigen::Matrix2d::Identity() * 1e-6;
   SetLandmark(p.map, 0, sharp);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
+
 #include "slam/dead_reckoning.hpp"
 #include "slam/fastslam.hpp"
 #include "tests/support/synthetic_stream.hpp"
@@ -124,9 +126,11 @@ TEST(FastSlamModule, KnownIdsAreMuchMoreAccurateThanOdometry) {
     const Estimate e2 = RunModule<FastSlam2>(s, FastSlam2Config{});
     const double a1 = AteRmse(e1, s), a2 = AteRmse(e2, s);
     std::printf("seed %lu: odometry %.3f fastslam1 %.3f fastslam2 %.3f\n", (unsigned long)seed, odo, a1, a2);
-    EXPECT_LT(a1, 0.5 * odo);
-    EXPECT_LT(a2, 0.5 * odo);
+    EXPECT_LT(a1, std::min(0.2, 0.5 * odo));  // measured 0.054, 0.110
+    EXPECT_LT(a2, std::min(0.15, 0.5 * odo));  // measured 0.079, 0.034
     EXPECT_EQ(ScoreMap(e2, s.header.world).found, 25);
+    for (const LandmarkEstimate& l : e2.landmarks)  // known ids: the estimate's id is the true id
+      EXPECT_LT((l.position - s.header.world.landmarks.at(l.id).position).norm(), 0.3) << l.id;
   }
 }
 
@@ -141,14 +145,52 @@ TEST(FastSlamModule, UnknownIdsBuildAMapWithoutDuplicates) {
     std::printf("seed %lu: odometry %.3f fastslam1 %.3f (%d/%d/%d) fastslam2 %.3f (%d/%d/%d)\n",
                 (unsigned long)seed, odo, a1, m1.found, m1.duplicates, m1.spurious, a2, m2.found, m2.duplicates,
                 m2.spurious);
-    EXPECT_LT(a1, 0.5 * odo);
-    EXPECT_LT(a2, 0.5 * odo);
+    EXPECT_LT(a1, std::min(0.25, 0.5 * odo));  // measured 0.130, 0.108
+    EXPECT_LT(a2, std::min(0.3, 0.5 * odo));   // measured 0.211, 0.022
     for (const MapScore& m : {m1, m2}) {
       EXPECT_EQ(m.found, 25);
       EXPECT_EQ(m.duplicates, 0);
       EXPECT_EQ(m.spurious, 0);
     }
   }
+}
+
+TEST(FastSlamModule, TrajectoryChoicesShareTimesAndCarryCovariances) {
+  const Stream s = MakeStream(4, true, 1);
+  FastSlamConfig c;
+  c.particles = 20;
+  c.trajectory = "best";
+  const Estimate best = RunModule<FastSlam>(s, c, true);
+  c.trajectory = "mean";
+  const Estimate mean = RunModule<FastSlam>(s, c, true);
+  c.trajectory = "path_mean";
+  const Estimate path_mean = RunModule<FastSlam>(s, c, true);
+  ASSERT_EQ(best.trajectory.size(), mean.trajectory.size());
+  ASSERT_EQ(best.trajectory.size(), path_mean.trajectory.size());
+  for (size_t i = 0; i < best.trajectory.size(); ++i) {
+    EXPECT_EQ(best.trajectory[i].t_s, mean.trajectory[i].t_s);
+    EXPECT_EQ(best.trajectory[i].t_s, path_mean.trajectory[i].t_s);
+    EXPECT_EQ(best.trajectory[i].covariance, mean.trajectory[i].covariance);  // the cloud's
+    EXPECT_LT((best.trajectory[i].pose.translation() - mean.trajectory[i].pose.translation()).norm(), 0.3);
+  }
+  EXPECT_LT(AteRmse(path_mean, s), 0.3);
+}
+
+TEST(FastSlamModule, BadConfigurationIsAnInputError) {
+  EXPECT_THROW(FastSlam(FastSlamConfig{.particles = 0}, false), InputError);
+  EXPECT_THROW(FastSlam(FastSlamConfig{.neff_threshold = 1.5}, true), InputError);
+  EXPECT_THROW(FastSlam(FastSlamConfig{.trajectory = "median"}, true), InputError);
+  const ModuleInfo info = FastSlam2Module();
+  EXPECT_THROW(info.create({{"particles", "-3"}}), InputError);
+  EXPECT_THROW(info.create({{"no_such_field", "1"}}), InputError);
+  for (const ParamInfo& p : info.params())
+    if (p.name == "particles") EXPECT_EQ(p.default_value, "50");
+  for (const ParamInfo& p : FastSlam1Module().params())
+    if (p.name == "particles") EXPECT_EQ(p.default_value, "100");
+  StreamHeader no_landmarks;
+  no_landmarks.sensors.odometry = OdometryConfig{};
+  FastSlam f(FastSlamConfig{}, false);
+  EXPECT_THROW(f.Start(no_landmarks), InputError);
 }
 
 TEST(FastSlamModule, ClutterIsFilteredByTheExistenceCounters) {
@@ -161,7 +203,7 @@ TEST(FastSlamModule, ClutterIsFilteredByTheExistenceCounters) {
     const MapScore m = ScoreMap(e, s.header.world);
     std::printf("fastslam%d with clutter: ate %.3f (odometry %.3f) found %d duplicates %d spurious %d\n", fs2 ? 2 : 1,
                 AteRmse(e, s), odo, m.found, m.duplicates, m.spurious);
-    EXPECT_LT(AteRmse(e, s), 0.5 * odo);
+    EXPECT_LT(AteRmse(e, s), std::min(0.2, 0.5 * odo));  // measured 0.087 (1.0), 0.048 (2.0)
     EXPECT_EQ(m.found, 25);
     EXPECT_EQ(m.duplicates, 0);
     EXPECT_EQ(m.spurious, 0);
