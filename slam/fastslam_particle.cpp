@@ -20,14 +20,6 @@ struct Association {
   std::vector<int> candidates;  // landmarks in range before the update (for the counters)
 };
 
-// The association score of z against a landmark: log N(z; h, Q) at the particle's pose
-// (1.0), or the predictive likelihood over the proposal prior (2.0, Montemerlo 2003).
-double Score(const FastSlamParticle& p, const LandmarkGaussian& lm, const Eigen::Vector2d& z,
-             const ParticleUpdateOptions& o) {
-  if (o.fastslam2) return ProposalLogLikelihood({p.pose, p.pose_covariance}, lm, z, o.R);
-  return MeasureLandmark(p.pose, lm, z, o.R).log_likelihood;
-}
-
 // Maximum-likelihood correspondences, mutually exclusive within a scan: pairs are taken
 // greedily from the most likely down; an observation whose every likelihood is below p0
 // (or whose candidates were all taken) starts a new landmark (Thrun 13.2, lines 7-16).
@@ -45,10 +37,14 @@ Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector
   const Eigen::Vector2d t = p.pose.translation();
   a.candidates = LandmarksInBox(p.map, (t.array() - reach).matrix(), (t.array() + reach).matrix());
   std::vector<std::tuple<double, int, int>> pairs;  // (-log-likelihood, observation, candidate)
+  // The score of z against a landmark: log N(z; h, Q) at the particle's pose (1.0, zero
+  // pose covariance), or the predictive likelihood over the proposal prior (2.0,
+  // Montemerlo 2003).
+  const PoseProposal prior{p.pose, p.pose_covariance};
   for (size_t c = 0; c < a.candidates.size(); ++c) {
-    const LandmarkGaussian& lm = *FindLandmark(p.map, a.candidates[c]);
+    const PredictedMeasurement predicted = PredictMeasurement(prior, *FindLandmark(p.map, a.candidates[c]), o.R);
     for (size_t j = 0; j < z.size(); ++j) {
-      const double ll = Score(p, lm, z[j], o);
+      const double ll = LogLikelihood(predicted, z[j]);
       if (ll >= o.log_p0) pairs.emplace_back(-ll, static_cast<int>(j), static_cast<int>(c));
     }
   }

@@ -66,6 +66,14 @@ double ProposalLogLikelihood(const PoseProposal& proposal, const LandmarkGaussia
   return GaussianLogLikelihood(t.innovation, t.L);
 }
 
+PredictedMeasurement PredictMeasurement(const PoseProposal& prior, const LandmarkGaussian& landmark,
+                                        const Eigen::Matrix2d& R) {
+  const ObservationPrediction p = PredictObservation(prior.mean, landmark.mean);
+  const Eigen::Matrix2d L = p.J_z_pose * prior.covariance * p.J_z_pose.transpose() +
+                            p.J_z_landmark * landmark.covariance * p.J_z_landmark.transpose() + R;
+  return {p.z, L.inverse(), -std::log(2.0 * M_PI) - 0.5 * std::log(L.determinant())};
+}
+
 double ConditionProposal(PoseProposal& proposal, const LandmarkGaussian& landmark, const Eigen::Vector2d& z,
                          const Eigen::Matrix2d& R) {
   const ProposalTerms t = Terms(proposal, landmark, z, R);

@@ -49,4 +49,19 @@ double ProposalLogLikelihood(const PoseProposal& proposal, const LandmarkGaussia
 double ConditionProposal(PoseProposal& proposal, const LandmarkGaussian& landmark, const Eigen::Vector2d& z,
                          const Eigen::Matrix2d& R);
 
+/// N(z; z_hat, L) of one landmark, prepared once per scan and evaluated for every
+/// observation during data association (L as in ProposalLogLikelihood; with a zero pose
+/// covariance it is FastSLAM 1.0's Q).
+struct PredictedMeasurement {
+  Eigen::Vector2d z_hat;
+  Eigen::Matrix2d L_inverse;
+  double log_normalizer = 0.0;  ///< -log(2 pi) - log det(L) / 2
+};
+PredictedMeasurement PredictMeasurement(const PoseProposal& prior, const LandmarkGaussian& landmark,
+                                        const Eigen::Matrix2d& R);
+inline double LogLikelihood(const PredictedMeasurement& p, const Eigen::Vector2d& z) {
+  const Eigen::Vector2d nu(z.x() - p.z_hat.x(), NormalizeAngle(z.y() - p.z_hat.y()));
+  return p.log_normalizer - 0.5 * nu.dot(p.L_inverse * nu);
+}
+
 }  // namespace slambox
