@@ -38,7 +38,7 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
     throw InputError(where + "." + field, 0, problem, fix);
   };
   if (c.particles < 1) fail("particles", "needs at least one particle", "set particles >= 1 (e.g. 100)");
-  if (!(c.new_landmark_gate_chi2 > 0)) fail("new_landmark_gate_chi2", "must be positive", "e.g. 13.8 (chi2, 2 dof, 99.9%)");
+  if (!(c.new_landmark_gate_chi2 > 0)) fail("new_landmark_gate_chi2", "must be positive", "e.g. 25");
   if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
   if (c.snapshot_period_s < 0) fail("snapshot_period_s", "must not be negative", "0 disables snapshots");

@@ -29,12 +29,12 @@ struct FastSlamConfig {
   /// p0 is the density N(nu; 0, R) of an innovation at this squared Mahalanobis distance
   /// under the sensor noise R alone: log p0 = -log(2 pi) - log det(R)/2 - gate/2.
   /// An observation starts a new landmark when every landmark's likelihood is below p0.
-  double new_landmark_gate_chi2 = 13.8;
+  double new_landmark_gate_chi2 = 25.0;
   double neff_threshold = 0.5;    ///< [fraction of M] resample when N_eff < neff_threshold * M
   bool use_known_ids = true;      ///< associate by the detector's ids when the stream has them
   double visibility_margin_m = 0.5;  ///< [m] counters: "should have been seen" within range_max - margin
   double candidate_margin_m = 2.0;   ///< [m] association candidates: means within range_max + margin
-  int report_min_counter = 3;        ///< unknown ids: report landmarks whose counter reached this
+  int report_min_counter = 10;       ///< unknown ids: report landmarks whose counter reached this (10 Hz: ~1 s net sightings)
   double motion_noise_scale = 1.0;   ///< factor on the odometry model's covariance
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
   std::string trajectory = "best";   ///< best | mean | path_mean: what goes into Estimate::trajectory
