@@ -162,6 +162,11 @@ void BM_Degeneracy(benchmark::State& state) {
       const size_t i = std::min(series.size() - 1, q * series.size() / 4);
       state.counters["ancestors_q" + std::to_string(q)] = series[i].second;
     }
+    double first_single_s = -1;  // first time all particles descend from one initial particle
+    for (const auto& [t, a] : series)
+      if (a == 1 && first_single_s < 0) first_single_s = t;
+    state.counters["t_one_ancestor_s"] = first_single_s;
+    state.counters["ancestors_t10s"] = series[std::min(series.size() - 1, size_t{100})].second;  // 10 Hz scans
     double resamplings = 0;
     for (const auto& [t, r] : e.diagnostics.at("resampled")) resamplings += r;
     state.counters["resamplings"] = resamplings;
