@@ -153,10 +153,11 @@ TEST(PoseProposal, PreparedLikelihoodEqualsTheDirectOne) {
   for (const Eigen::Matrix3d& prior_cov : {Eigen::Matrix3d(Eigen::Matrix3d::Zero()), P}) {
     const PoseProposal prior{SE2(0.5, -0.3, 0.4), prior_cov};
     const PredictedMeasurement pm = PredictMeasurement(prior, lm, kR);
-    for (const Eigen::Vector2d z : {Eigen::Vector2d(4.4, -2.8), Eigen::Vector2d(4.6, 2.9)})
+    for (const Eigen::Vector2d& z : {Eigen::Vector2d(4.4, -2.8), Eigen::Vector2d(4.6, 2.9)})
       EXPECT_NEAR(LogLikelihood(pm, z), ProposalLogLikelihood(prior, lm, z, kR), 1e-10);
-    if (prior_cov.isZero())  // FastSLAM 1.0: the same as the landmark EKF's likelihood
+    if (prior_cov.isZero()) {  // FastSLAM 1.0: the same as the landmark EKF's likelihood
       EXPECT_NEAR(LogLikelihood(pm, {4.4, -2.8}), MeasureLandmark(prior.mean, lm, {4.4, -2.8}, kR).log_likelihood, 1e-10);
+    }
   }
 }
 }  // namespace

@@ -183,10 +183,12 @@ TEST(FastSlamModule, BadConfigurationIsAnInputError) {
   const ModuleInfo info = FastSlam2Module();
   EXPECT_THROW(info.create({{"particles", "-3"}}), InputError);
   EXPECT_THROW(info.create({{"no_such_field", "1"}}), InputError);
-  for (const ParamInfo& p : info.params())
-    if (p.name == "particles") EXPECT_EQ(p.default_value, "50");
-  for (const ParamInfo& p : FastSlam1Module().params())
-    if (p.name == "particles") EXPECT_EQ(p.default_value, "100");
+  for (const ParamInfo& p : info.params()) {
+    if (p.name == "particles") { EXPECT_EQ(p.default_value, "50"); }
+  }
+  for (const ParamInfo& p : FastSlam1Module().params()) {
+    if (p.name == "particles") { EXPECT_EQ(p.default_value, "100"); }
+  }
   StreamHeader no_landmarks;
   no_landmarks.sensors.odometry = OdometryConfig{};
   FastSlam f(FastSlamConfig{}, false);
