@@ -1,0 +1,154 @@
+#include "slam/data_association.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "slam/range_bearing.hpp"
+
+namespace slambox {
+
+double Chi2Quantile(int dof, double probability) {
+  // Normal quantile by bisection on Phi(x) = erfc(-x / sqrt 2) / 2.
+  double lo = -10.0, hi = 10.0;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * std::erfc(-mid / std::sqrt(2.0)) < probability ? lo : hi) = mid;
+  }
+  const double z = 0.5 * (lo + hi), k = dof, c = 2.0 / (9.0 * k);
+  return k * std::pow(1.0 - c + z * std::sqrt(c), 3);
+}
+
+double MahalanobisSquared(const EkfSlamState& s, int index, const Eigen::Vector2d& z, const Eigen::Matrix2d& R) {
+  const ObservationPrediction p = PredictObservation(s.Pose(), s.Landmark(index));
+  const int a = 3 + 2 * index;
+  const Eigen::Matrix3d P_rr = s.covariance.topLeftCorner<3, 3>();
+  const Eigen::Matrix<double, 3, 2> P_rm = s.covariance.block<3, 2>(0, a);
+  const Eigen::Matrix2d P_mm = s.covariance.block<2, 2>(a, a);
+  const Eigen::Matrix2d cross = p.J_z_pose * P_rm * p.J_z_landmark.transpose();
+  const Eigen::Matrix2d S = p.J_z_pose * P_rr * p.J_z_pose.transpose() + cross + cross.transpose() +
+                            p.J_z_landmark * P_mm * p.J_z_landmark.transpose() + R;
+  const Eigen::Vector2d nu = Innovation(z, p.z);
+  return nu.dot(S.ldlt().solve(nu));
+}
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// d2[i][j] for every observation i and landmark j.
+std::vector<std::vector<double>> CompatibilityTable(const EkfSlamState& s, const std::vector<Eigen::Vector2d>& z,
+                                                    const Eigen::Matrix2d& R) {
+  std::vector<std::vector<double>> d2(z.size(), std::vector<double>(s.NumLandmarks(), kInf));
+  for (size_t i = 0; i < z.size(); ++i)
+    for (int j = 0; j < s.NumLandmarks(); ++j) d2[i][j] = MahalanobisSquared(s, j, z[i], R);
+  return d2;
+}
+
+void ApplyTwoGates(const std::vector<std::vector<double>>& d2, const AssociationGates& g, Association& a) {
+  for (size_t i = 0; i < d2.size(); ++i) {
+    a.nearest_chi2[i] = d2[i].empty() ? kInf : *std::min_element(d2[i].begin(), d2[i].end());
+    if (a.landmark[i] < 0) a.landmark[i] = a.nearest_chi2[i] > g.new_chi2 ? Association::kNew : Association::kDiscard;
+  }
+}
+}  // namespace
+
+Association AssociateNearestNeighbour(const EkfSlamState& s, const std::vector<Eigen::Vector2d>& z,
+                                      const Eigen::Matrix2d& R, const AssociationGates& gates) {
+  const auto d2 = CompatibilityTable(s, z, R);
+  Association a{std::vector<int>(z.size(), Association::kDiscard), std::vector<double>(z.size(), kInf), 0};
+  std::vector<int> owner(s.NumLandmarks(), -1);
+  for (size_t i = 0; i < z.size(); ++i) {
+    const auto best = std::min_element(d2[i].begin(), d2[i].end());
+    if (best == d2[i].end() || *best >= gates.accept_chi2) continue;
+    const int j = static_cast<int>(best - d2[i].begin());
+    if (owner[j] >= 0 && d2[owner[j]][j] <= *best) continue;  // the closer observation keeps it
+    if (owner[j] >= 0) a.landmark[owner[j]] = Association::kDiscard;
+    owner[j] = static_cast<int>(i);
+    a.landmark[i] = j;
+  }
+  ApplyTwoGates(d2, gates, a);  // a loser of a contested landmark has d^2 < accept: discarded
+  return a;
+}
+
+double JointMahalanobisSquared(const EkfSlamState& s, const std::vector<Eigen::Vector2d>& z,
+                               const Eigen::Matrix2d& R, const std::vector<std::pair<int, int>>& pairs) {
+  const int k = static_cast<int>(pairs.size());
+  // H over the sub-state (robot, paired landmarks): 2k x (3 + 2k).
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * k, 3 + 2 * k), P(3 + 2 * k, 3 + 2 * k);
+  Eigen::VectorXd nu(2 * k);
+  std::vector<int> rows = {0, 1, 2};
+  for (int q = 0; q < k; ++q) {
+    const auto [i, j] = pairs[q];
+    const ObservationPrediction p = PredictObservation(s.Pose(), s.Landmark(j));
+    H.block<2, 3>(2 * q, 0) = p.J_z_pose;
+    H.block<2, 2>(2 * q, 3 + 2 * q) = p.J_z_landmark;
+    nu.segment<2>(2 * q) = Innovation(z[i], p.z);
+    rows.push_back(3 + 2 * j);
+    rows.push_back(4 + 2 * j);
+  }
+  for (int r = 0; r < 3 + 2 * k; ++r)
+    for (int c = 0; c < 3 + 2 * k; ++c) P(r, c) = s.covariance(rows[r], rows[c]);
+  Eigen::MatrixXd S = H * P * H.transpose();
+  for (int q = 0; q < k; ++q) S.block<2, 2>(2 * q, 2 * q) += R;
+  return nu.dot(S.ldlt().solve(nu));
+}
+
+namespace {
+struct JcbbSearch {
+  const EkfSlamState& s;
+  const std::vector<Eigen::Vector2d>& z;
+  const Eigen::Matrix2d& R;
+  const std::vector<std::vector<int>>& candidates;  // individually compatible landmarks per observation
+  const AssociationGates& gates;
+  std::vector<std::pair<int, int>> current, best;
+  double best_d2 = kInf;
+  std::vector<bool> used;
+  int nodes = 0;
+
+  void Recurse(size_t i) {
+    if (++nodes > gates.jcbb_max_nodes) return;
+    if (i == z.size()) {
+      const double d2 = current.empty() ? 0.0 : JointMahalanobisSquared(s, z, R, current);
+      if (current.size() > best.size() || (current.size() == best.size() && d2 < best_d2)) {
+        best = current;
+        best_d2 = d2;
+      }
+      return;
+    }
+    for (int j : candidates[i]) {
+      if (used[j]) continue;
+      current.emplace_back(static_cast<int>(i), j);
+      const int dof = 2 * static_cast<int>(current.size());
+      if (JointMahalanobisSquared(s, z, R, current) < Chi2Quantile(dof, gates.joint_probability)) {
+        used[j] = true;
+        Recurse(i + 1);
+        used[j] = false;
+      }
+      current.pop_back();
+    }
+    // Leave observation i unpaired only if that can still beat the best (the bound).
+    if (current.size() + (z.size() - i - 1) > best.size()) Recurse(i + 1);
+  }
+};
+}  // namespace
+
+Association AssociateJcbb(const EkfSlamState& s, const std::vector<Eigen::Vector2d>& z, const Eigen::Matrix2d& R,
+                          const AssociationGates& gates) {
+  const auto d2 = CompatibilityTable(s, z, R);
+  std::vector<std::vector<int>> candidates(z.size());
+  for (size_t i = 0; i < z.size(); ++i) {
+    for (int j = 0; j < s.NumLandmarks(); ++j)
+      if (d2[i][j] < gates.accept_chi2) candidates[i].push_back(j);
+    std::sort(candidates[i].begin(), candidates[i].end(), [&](int a, int b) { return d2[i][a] < d2[i][b]; });
+  }
+  JcbbSearch search{s, z, R, candidates, gates, {}, {}, kInf, std::vector<bool>(s.NumLandmarks(), false)};
+  search.Recurse(0);
+  Association a{std::vector<int>(z.size(), Association::kDiscard), std::vector<double>(z.size(), kInf),
+                search.nodes};
+  for (const auto& [i, j] : search.best) a.landmark[i] = j;
+  ApplyTwoGates(d2, gates, a);
+  return a;
+}
+
+}  // namespace slambox

@@ -1,0 +1,172 @@
+#include "slam/ekf_slam.hpp"
+
+#include "core/odometry_model.hpp"
+#include "slam/range_bearing.hpp"
+
+namespace slambox {
+
+void BindParams(EkfSlamConfig& c, ParamBinder& b) {
+  b.Bind("association", c.association, {"auto", "known", "nn", "jcbb"},
+         "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");
+  b.Bind("gate_accept_chi2", c.gate_accept_chi2, "chi2", "accept the nearest landmark if its d^2 is below");
+  b.Bind("gate_new_chi2", c.gate_new_chi2, "chi2", "new landmark if every d^2 is above (ambiguous in between)");
+  b.Bind("jcbb_joint_probability", c.jcbb_joint_probability, "-", "JCBB joint compatibility confidence");
+  b.Bind("jcbb_max_nodes", c.jcbb_max_nodes, "nodes", "JCBB search budget per scan");
+  b.Bind("confirm_sightings", c.confirm_sightings, "scans", "sightings that confirm a tentative landmark");
+  b.Bind("tentative_max_misses", c.tentative_max_misses, "scans", "misses in view that delete a tentative landmark");
+  b.Bind("visibility_margin_m", c.visibility_margin_m, "m", "a landmark is expected in view this far inside range_max");
+  b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
+  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
+  b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance");
+}
+
+EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {}
+
+void EkfSlam::Start(const StreamHeader& header) {
+  alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
+  const LandmarkSensorConfig sensor = header.sensors.landmarks.value_or(LandmarkSensorConfig{});
+  R_ = config_.observation_noise_scale * ObservationCovariance(sensor);
+  range_max_m_ = sensor.range_max_m;
+  half_fov_rad_ = sensor.fov_deg * M_PI / 360.0;
+  known_ids_ = config_.association == "known" || (config_.association == "auto" && sensor.known_ids);
+  state_ = MakeInitialState(header.start_pose);
+  tracks_.clear();
+  key_of_id_.clear();
+  next_key_ = 0;
+  prior_position_ = header.start_pose.translation();
+  estimate_ = Estimate{};
+  estimate_.trajectory.push_back({0.0, header.start_pose, Eigen::Matrix3d::Zero(), true});
+}
+
+void EkfSlam::OnOdometry(const OdometryEvent& odometry) {
+  const OdometryIncrement u = Decompose(odometry.delta);
+  const MotionPrediction p = PredictMotion(state_.Pose(), u);
+  Eigen::Matrix3d J = p.J_pose_pose;
+  if (config_.fej) {  // Huang et al. 2008, eq. 27: the displacement between the first estimates
+    const Eigen::Vector2d d = p.pose.translation() - prior_position_;
+    J(0, 2) = -d.y();
+    J(1, 2) = d.x();
+  }
+  const Eigen::Matrix3d M = config_.motion_noise_scale * IncrementCovariance(u, alpha_);
+  PredictState(state_, p.pose, J, p.J_pose_increment * M * p.J_pose_increment.transpose());
+  prior_position_ = p.pose.translation();
+  estimate_.trajectory.push_back({odometry.t_s, state_.Pose(), state_.covariance.topLeftCorner<3, 3>(), true});
+}
+
+std::vector<int> EkfSlam::AssociateKnownIds(const std::vector<LandmarkObservation>& obs) const {
+  std::vector<int> target(obs.size(), Association::kDiscard);
+  for (size_t i = 0; i < obs.size(); ++i) {
+    if (obs[i].id < 0) continue;  // clutter: a detector that knows ids reports it as -1
+    const auto it = key_of_id_.find(obs[i].id);
+    if (it == key_of_id_.end()) {
+      target[i] = Association::kNew;
+      continue;
+    }
+    for (size_t j = 0; j < tracks_.size(); ++j)
+      if (tracks_[j].key == it->second) target[i] = static_cast<int>(j);
+  }
+  // The same id twice in one scan: keep the first.
+  for (size_t i = 0; i < obs.size(); ++i)
+    for (size_t k = 0; k < i; ++k)
+      if (obs[i].id >= 0 && obs[k].id == obs[i].id) target[i] = Association::kDiscard;
+  return target;
+}
+
+std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
+  const auto& obs = event.observations;
+  std::vector<Eigen::Vector2d> z(obs.size());
+  for (size_t i = 0; i < obs.size(); ++i) z[i] = {obs[i].range_m, obs[i].bearing_rad};
+  const AssociationGates gates{config_.gate_accept_chi2, config_.gate_new_chi2, config_.jcbb_joint_probability,
+                               config_.jcbb_max_nodes};
+  std::vector<int> target;
+  if (known_ids_) target = AssociateKnownIds(obs);
+  else if (config_.association == "nn") target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
+  else target = AssociateJcbb(state_, z, R_, gates).landmark;
+
+  // One batched update with every matched observation, linearized at the current
+  // estimate, or for FEJ at the robot's prior and the landmark's first estimate.
+  std::vector<int> keys(obs.size(), -1);
+  std::vector<LinearizedObservation> lin;
+  std::vector<bool> matched(tracks_.size(), false);
+  const SE2 pose = state_.Pose();
+  for (size_t i = 0; i < obs.size(); ++i) {
+    const int j = target[i];
+    if (j < 0) continue;
+    const ObservationPrediction p = PredictObservation(pose, state_.Landmark(j));
+    const ObservationPrediction J = config_.fej ? PredictObservation(pose, tracks_[j].first_estimate) : p;
+    lin.push_back({j, Innovation(z[i], p.z), J.J_z_pose, J.J_z_landmark});
+    matched[j] = true;
+    keys[i] = tracks_[j].key;
+    ++tracks_[j].sightings;
+  }
+  const EkfUpdateResult update = UpdateState(state_, lin, R_);
+  if (!update.applied && !lin.empty()) Record(event.t_s, "update_rejected", 1.0);
+
+  int created = 0, discarded = 0;
+  for (size_t i = 0; i < obs.size(); ++i) {
+    if (target[i] == Association::kDiscard) ++discarded;
+    if (target[i] != Association::kNew) continue;
+    const int j = AddLandmark(state_, z[i], R_);
+    LandmarkTrack track{next_key_++, known_ids_ ? obs[i].id : -1, 1, 0, known_ids_ || config_.confirm_sightings <= 1,
+                        state_.Landmark(j)};
+    if (known_ids_) key_of_id_[obs[i].id] = track.key;
+    keys[i] = track.key;
+    tracks_.push_back(track);
+    ++created;
+  }
+  ManageTentative(matched);
+
+  int confirmed = 0;
+  for (const auto& t : tracks_) confirmed += t.confirmed ? 1 : 0;
+  if (!estimate_.trajectory.empty() && estimate_.trajectory.back().t_s == event.t_s) {
+    estimate_.trajectory.back().pose = state_.Pose();
+    estimate_.trajectory.back().covariance = state_.covariance.topLeftCorner<3, 3>();
+  }
+  Record(event.t_s, "num_landmarks", confirmed);
+  Record(event.t_s, "num_tentative", static_cast<double>(tracks_.size()) - confirmed);
+  Record(event.t_s, "new_landmarks", created);
+  Record(event.t_s, "discarded_observations", discarded);
+  if (update.applied) {
+    Record(event.t_s, "nis", update.nis);
+    Record(event.t_s, "nis_dof", update.dof);
+  }
+  return keys;
+}
+
+void EkfSlam::ManageTentative(const std::vector<bool>& matched) {
+  const SE2 pose = state_.Pose();
+  for (int j = static_cast<int>(matched.size()) - 1; j >= 0; --j) {
+    LandmarkTrack& t = tracks_[j];
+    if (t.confirmed) continue;
+    if (matched[j]) {
+      t.confirmed = t.sightings >= config_.confirm_sightings;
+      continue;
+    }
+    const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
+    const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
+    if (in_view && ++t.misses >= config_.tentative_max_misses) {
+      RemoveLandmark(state_, j);
+      tracks_.erase(tracks_.begin() + j);
+    }
+  }
+}
+
+void EkfSlam::OnLandmarks(const LandmarkEvent& event) { ProcessLandmarks(event); }
+
+Estimate EkfSlam::Finish() {
+  for (size_t j = 0; j < tracks_.size(); ++j) {
+    if (!tracks_[j].confirmed) continue;
+    const int index = static_cast<int>(j);
+    estimate_.landmarks.push_back({known_ids_ ? tracks_[j].id : tracks_[j].key, state_.Landmark(index),
+                                   state_.LandmarkCovariance(index), true});
+  }
+  return std::move(estimate_);
+}
+
+ModuleInfo EkfSlamModule() {
+  return MakeModuleInfo<EkfSlam, EkfSlamConfig>(
+      "ekf-slam", "EKF-SLAM over point landmarks (known ids, nearest neighbour or JCBB; optional FEJ)",
+      {.odometry = true, .landmarks = true}, &BindParams);
+}
+
+}  // namespace slambox

@@ -1,0 +1,82 @@
+#pragma once
+// `ekf-slam`: EKF-SLAM over robot pose and point landmarks (Thrun, Prob. Robotics,
+// Ch. 10; Bailey et al. 2006). Odometry drives the prediction, each landmark scan is one
+// batched Joseph-form update, unseen landmarks are added through the inverse observation
+// model. Association by known ids, nearest neighbour with two gates, or JCBB; with
+// unknown ids a new landmark is tentative until seen `confirm_sightings` times and is
+// removed if it is missed `tentative_max_misses` times first (so clutter does not
+// become map). Optional FEJ-EKF (Huang, Mourikis & Roumeliotis 2008).
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/slam_module.hpp"
+#include "slam/data_association.hpp"
+#include "slam/ekf_slam_filter.hpp"
+
+namespace slambox {
+
+struct EkfSlamConfig {
+  /// "auto": known ids if the sensor reports them, else JCBB; or "known", "nn", "jcbb".
+  std::string association = "auto";
+  double gate_accept_chi2 = 9.21;       ///< [chi2, 2 dof] accept the nearest landmark below this d^2
+  double gate_new_chi2 = 25.0;          ///< [chi2, 2 dof] new landmark if every d^2 is above this
+  double jcbb_joint_probability = 0.99; ///< [-] JCBB joint compatibility confidence
+  int jcbb_max_nodes = 20000;           ///< [nodes] JCBB search budget per scan
+  int confirm_sightings = 3;            ///< [scans] sightings that confirm a tentative landmark (unknown ids)
+  int tentative_max_misses = 3;         ///< [scans] misses in view that delete a tentative landmark
+  double visibility_margin_m = 0.5;     ///< [m] a landmark counts as missed only this far inside range_max
+  bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
+  double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
+  double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
+};
+void BindParams(EkfSlamConfig& c, ParamBinder& b);
+
+/// Bookkeeping of one landmark in the state (same order as the state's landmarks).
+struct LandmarkTrack {
+  int key = 0;           ///< unique for the run, never reused (GraphSLAM's landmark handle)
+  int id = -1;           ///< true id with known association, else -1
+  int sightings = 0;
+  int misses = 0;
+  bool confirmed = false;
+  Eigen::Vector2d first_estimate = Eigen::Vector2d::Zero();  ///< FEJ linearization point
+};
+
+class EkfSlam : public SlamModule {
+ public:
+  explicit EkfSlam(const EkfSlamConfig& config);
+  void Start(const StreamHeader& header) override;
+  void OnOdometry(const OdometryEvent& odometry) override;
+  void OnLandmarks(const LandmarkEvent& event) override;
+  Estimate Finish() override;
+
+  /// Processes a scan and returns per observation the key of the landmark it updated or
+  /// created, or -1 if it was discarded (clutter, ambiguous).
+  std::vector<int> ProcessLandmarks(const LandmarkEvent& event);
+  const EkfSlamState& state() const { return state_; }
+  const std::vector<LandmarkTrack>& tracks() const { return tracks_; }
+
+ private:
+  std::vector<int> AssociateKnownIds(const std::vector<LandmarkObservation>& obs) const;
+  void ManageTentative(const std::vector<bool>& matched);
+  void Record(double t_s, const std::string& name, double value) {
+    estimate_.diagnostics[name].emplace_back(t_s, value);
+  }
+
+  EkfSlamConfig config_;
+  std::array<double, 4> alpha_{};
+  Eigen::Matrix2d R_ = Eigen::Matrix2d::Identity();
+  double range_max_m_ = 1e9;
+  double half_fov_rad_ = M_PI;
+  bool known_ids_ = true;
+  EkfSlamState state_;
+  std::vector<LandmarkTrack> tracks_;
+  std::map<int, int> key_of_id_;  ///< true id -> key (known association)
+  int next_key_ = 0;
+  Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction
+  Estimate estimate_;
+};
+
+ModuleInfo EkfSlamModule();
+
+}  // namespace slambox

@@ -1,0 +1,64 @@
+#pragma once
+// The EKF-SLAM Gaussian over robot and map, x = (x, y, theta, m1x, m1y, ..., mnx, mny),
+// and its three operations (Thrun, Prob. Robotics, Table 10.1; Bailey's ekfslam):
+// prediction touching only the robot rows (O(n)), augmentation by the inverse
+// observation model with its cross covariances (O(n)), and a batched range-bearing
+// update in Joseph form (O(n^2) per observation, no (3+2n)^3 work).
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/se2.hpp"
+
+namespace slambox {
+
+struct EkfSlamState {
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(3);
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(3, 3);
+
+  int NumLandmarks() const { return static_cast<int>(mean.size() - 3) / 2; }
+  SE2 Pose() const { return {mean(0), mean(1), mean(2)}; }
+  Eigen::Vector2d Landmark(int index) const { return mean.segment<2>(3 + 2 * index); }
+  Eigen::Matrix2d LandmarkCovariance(int index) const {
+    return covariance.block<2, 2>(3 + 2 * index, 3 + 2 * index);
+  }
+};
+
+/// A robot at `start` with zero covariance and no landmarks.
+EkfSlamState MakeInitialState(const SE2& start);
+
+/// x' = predicted_pose, P_rr' = J P_rr J^T + Q_pose, P_rm' = J P_rm (the map block is
+/// untouched). J = J_pose_pose (FEJ callers pass it evaluated at first estimates),
+/// Q_pose = J_pose_increment M J_pose_increment^T.
+void PredictState(EkfSlamState& state, const SE2& predicted_pose, const Eigen::Matrix3d& J_pose_pose,
+                  const Eigen::Matrix3d& Q_pose);
+
+/// Appends the landmark m = g(x, z) (InverseObservation) with
+/// P_mm = Gx P_rr Gx^T + Gz R Gz^T and P_m* = Gx P_r* (Bailey's augment). Returns its index.
+int AddLandmark(EkfSlamState& state, const Eigen::Vector2d& z, const Eigen::Matrix2d& R);
+
+/// Marginalizes landmark `index` out (drops its rows and columns); later indices shift down.
+void RemoveLandmark(EkfSlamState& state, int index);
+
+/// One range-bearing measurement of landmark `landmark` with the Jacobians of h at the
+/// linearization point (current estimate, or first estimates for FEJ-EKF).
+struct LinearizedObservation {
+  int landmark = 0;
+  Eigen::Vector2d innovation = Eigen::Vector2d::Zero();  ///< z - h(x̂), bearing wrapped
+  Eigen::Matrix<double, 2, 3> J_z_pose = Eigen::Matrix<double, 2, 3>::Zero();
+  Eigen::Matrix2d J_z_landmark = Eigen::Matrix2d::Zero();
+};
+
+struct EkfUpdateResult {
+  bool applied = false;  ///< false: the innovation covariance was not positive definite
+  double nis = 0.0;      ///< joint ν^T S^-1 ν of the batch
+  int dof = 0;           ///< 2 * number of observations
+};
+
+/// Batched update with all observations of one scan, Joseph form
+/// P' = (I - K H) P (I - K H)^T + K R K^T, K = P H^T S^-1, S = H P H^T + R; H is sparse
+/// (two 2x3 and 2x2 blocks per row pair), so every product with H is O(n) and the two
+/// dense products are O(n^2 k) for k observations. R is the per-observation covariance.
+EkfUpdateResult UpdateState(EkfSlamState& state, const std::vector<LinearizedObservation>& observations,
+                            const Eigen::Matrix2d& R);
+
+}  // namespace slambox

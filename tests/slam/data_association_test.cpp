@@ -1,0 +1,88 @@
+// Data association: two-gate nearest neighbour and JCBB on crafted states, and the
+// chi-square quantile against tabulated values.
+#include "slam/data_association.hpp"
+
+#include <gtest/gtest.h>
+
+#include "slam/range_bearing.hpp"
+
+namespace slambox {
+namespace {
+
+/// Robot at the origin facing +x, well known except for 1 m of lateral (y) uncertainty;
+/// two well-mapped landmarks 1 m apart across the line of sight, 10 m ahead.
+EkfSlamState AmbiguousState() {
+  EkfSlamState s = MakeInitialState(SE2(0, 0, 0));
+  s.mean.conservativeResize(7);
+  s.mean.tail<4>() << 10.0, 0.0, 10.0, 1.0;
+  s.covariance = Eigen::MatrixXd::Zero(7, 7);
+  s.covariance.diagonal() << 1e-4, 1.0, 1e-8, 1e-4, 1e-4, 1e-4, 1e-4;
+  return s;
+}
+
+const Eigen::Matrix2d kR = Eigen::Vector2d(0.05 * 0.05, 0.002 * 0.002).asDiagonal();
+
+/// What a robot truly at (0, y_true, 0) measures of landmark `index`.
+Eigen::Vector2d Measure(const EkfSlamState& s, int index, double y_true) {
+  return PredictObservation(SE2(0.0, y_true, 0.0), s.Landmark(index)).z;
+}
+
+TEST(DataAssociation, JcbbFindsTheJointlyCompatibleHypothesisWhereNearestNeighbourFails) {
+  // The robot is truly 0.6 m to the right: landmark 0 appears 0.6 m left of where it
+  // is mapped, i.e. 0.4 m from landmark 1, so nearest neighbour gives observation 0 to
+  // landmark 1 (and then has nothing consistent for observation 1). Only the pairing
+  // (0->0, 1->1) explains both observations with one robot offset.
+  const EkfSlamState s = AmbiguousState();
+  const std::vector<Eigen::Vector2d> z = {Measure(s, 0, -0.6), Measure(s, 1, -0.6)};
+  const AssociationGates gates;
+  // Both observations are individually compatible with both landmarks.
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) EXPECT_LT(MahalanobisSquared(s, j, z[i], kR), gates.accept_chi2);
+
+  const Association nn = AssociateNearestNeighbour(s, z, kR, gates);
+  EXPECT_EQ(nn.landmark[0], 1);
+  EXPECT_EQ(nn.landmark[1], Association::kDiscard);
+
+  const Association jcbb = AssociateJcbb(s, z, kR, gates);
+  EXPECT_EQ(jcbb.landmark[0], 0);
+  EXPECT_EQ(jcbb.landmark[1], 1);
+  EXPECT_LT(JointMahalanobisSquared(s, z, kR, {{0, 0}, {1, 1}}), Chi2Quantile(4, 0.99));
+  EXPECT_GT(JointMahalanobisSquared(s, z, kR, {{0, 1}, {1, 0}}), 100.0);
+}
+
+TEST(DataAssociation, TwoGatesSeparateMatchAmbiguousAndNew) {
+  EkfSlamState s = AmbiguousState();
+  s.covariance(1, 1) = 1e-4;  // a well localized robot: gates are a few centimetres
+  const AssociationGates gates;
+  const Eigen::Vector2d exact = Measure(s, 0, 0.0);
+  // Lateral offsets at 10 m: sigma of the lateral innovation ~ sqrt(2e-4 + (10*0.002)^2) = 0.024 m.
+  const double sigma_lat = std::sqrt(2e-4 + 4e-4);
+  auto at_offset = [&](double chi) { return Measure(s, 0, -chi * sigma_lat); };
+  const std::vector<Eigen::Vector2d> z = {exact, at_offset(3.9), at_offset(8.0)};
+  const Association a = AssociateNearestNeighbour(s, z, kR, gates);
+  EXPECT_EQ(a.landmark[0], 0);                      // d^2 ~ 0: match
+  EXPECT_EQ(a.landmark[1], Association::kDiscard);  // 9.21 < d^2 ~ 15 < 25: ambiguous
+  EXPECT_EQ(a.landmark[2], Association::kNew);      // d^2 ~ 64 > 25: new landmark
+  EXPECT_GT(a.nearest_chi2[1], gates.accept_chi2);
+  EXPECT_LT(a.nearest_chi2[1], gates.new_chi2);
+  const Association j = AssociateJcbb(s, z, kR, gates);
+  EXPECT_EQ(j.landmark, a.landmark);
+}
+
+TEST(DataAssociation, EmptyMapMakesEveryObservationNew) {
+  const EkfSlamState s = MakeInitialState(SE2(1, 2, 0.3));
+  const std::vector<Eigen::Vector2d> z = {{3.0, 0.1}, {4.0, -2.0}};
+  EXPECT_EQ(AssociateNearestNeighbour(s, z, kR, {}).landmark, std::vector<int>(2, Association::kNew));
+  EXPECT_EQ(AssociateJcbb(s, z, kR, {}).landmark, std::vector<int>(2, Association::kNew));
+}
+
+TEST(DataAssociation, Chi2QuantileMatchesTables) {
+  EXPECT_NEAR(Chi2Quantile(2, 0.99), 9.210, 0.05);
+  EXPECT_NEAR(Chi2Quantile(2, 0.95), 5.991, 0.06);
+  EXPECT_NEAR(Chi2Quantile(4, 0.95), 9.488, 0.05);
+  EXPECT_NEAR(Chi2Quantile(10, 0.99), 23.209, 0.05);
+  EXPECT_NEAR(Chi2Quantile(30, 0.975), 46.979, 0.05);
+}
+
+}  // namespace
+}  // namespace slambox
