@@ -2,12 +2,17 @@
 
 #include "core/error.hpp"
 #include "slam/dead_reckoning.hpp"
+#include "slam/ekf_slam.hpp"
+#include "slam/fastslam.hpp"
 
 namespace slambox {
 
 const std::vector<ModuleInfo>& AllModules() {
   static const std::vector<ModuleInfo> modules = {
       DeadReckoningModule(),
+      EkfSlamModule(),
+      FastSlam1Module(),
+      FastSlam2Module(),
   };
   return modules;
 }
