@@ -162,11 +162,15 @@ IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarge
   const double sigma2 = config.sigma_residual_m > 0 ? config.sigma_residual_m * config.sigma_residual_m
                                                     : result.rms_residual_m * result.rms_residual_m *
                                                           n / std::max(1, n - 3);
+  // A degenerate direction's small eigenvalue is mostly normal noise, not information:
+  // give it the floor so its variance is huge rather than falsely centimetric.
   const double floor = 1e-9 * std::max(1, n);
+  const double degenerate_below = config.degeneracy_eigenvalue_ratio * n;
   result.covariance.setZero();
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d v = result.eigenvectors.col(k);
-    result.covariance += v * v.transpose() * sigma2 / std::max(result.eigenvalues(k), floor);
+    const double lambda = result.eigenvalues(k) < degenerate_below ? floor : std::max(result.eigenvalues(k), floor);
+    result.covariance += v * v.transpose() * sigma2 / lambda;
   }
   return result;
 }

@@ -31,7 +31,7 @@ struct IcpConfig {
   double convergence_rotation_rad = 1e-4;    ///< [rad] ... and turns less than this
   double max_correspondence_m = 0.5;         ///< [m] distance gate on nearest-neighbour pairs
   double trim_fraction = 0.0;                ///< [0,1) drop this fraction of the worst pairs
-  int projection_window_beams = 3;           ///< beams searched each side of the projected bearing
+  int projection_window_beams = 1;           ///< beams searched each side of the projected bearing
   int min_inliers = 10;                      ///< fewer pairs: stop, converged = false
   /// Degenerate direction: Hessian eigenvalue / inliers below this [m^2/m^2, rad: m^2].
   double degeneracy_eigenvalue_ratio = 0.03;

@@ -64,17 +64,19 @@ SE2 AlignPointToLine(const std::vector<Eigen::Vector2d>& source, const std::vect
   Eigen::Vector2d r(std::cos(T_current.theta), std::sin(T_current.theta));
   const double h_norm = h_e.norm();
   if (h_norm > 1e-12 * std::max(1.0, std::abs(mu(1)))) {
-    // Secular equation in u = mu_0 - lambda > 0: h0^2/u^2 + h1^2/(u + mu1 - mu0)^2 = 1,
-    // decreasing in u, root in (0, |h|]. Bisection in log space is plenty for a 2x2.
-    auto phi = [&](double u) {
-      return h_e(0) * h_e(0) / (u * u) + h_e(1) * h_e(1) / ((u + mu(1) - mu(0)) * (u + mu(1) - mu(0))) - 1.0;
-    };
-    double lo = h_norm * 1e-12, hi = h_norm;
-    for (int it = 0; it < 100 && hi - lo > 1e-15 * hi; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (phi(mid) > 0 ? lo : hi) = mid;
+    // Secular equation in u = mu_0 - lambda > 0: phi(u) = h0^2/u^2 + h1^2/(u + gap)^2 - 1 = 0,
+    // convex and decreasing, root in (0, |h|]. phi(|h0|) >= 0, so Newton from u = |h0|
+    // approaches the root monotonically from the left.
+    const double gap = mu(1) - mu(0), h0 = h_e(0) * h_e(0), h1 = h_e(1) * h_e(1);
+    double u = std::max(std::abs(h_e(0)), 1e-12 * h_norm);
+    for (int it = 0; it < 60; ++it) {
+      const double a = 1.0 / u, b = 1.0 / (u + gap);
+      const double phi = h0 * a * a + h1 * b * b - 1.0;
+      const double dphi = -2.0 * (h0 * a * a * a + h1 * b * b * b);
+      const double step = -phi / dphi;
+      u += step;
+      if (std::abs(step) <= 1e-15 * u) break;
     }
-    const double u = 0.5 * (lo + hi);
     const Eigen::Vector2d r_e(h_e(0) / u, h_e(1) / (u + mu(1) - mu(0)));
     r = (eq.eigenvectors() * r_e).normalized();
   }

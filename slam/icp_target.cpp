@@ -39,9 +39,14 @@ Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count) {
     cyy += d.y() * d.y();
   }
   if (cxx + cyy < 1e-18) return Eigen::Vector2d::Zero();
-  // Major axis angle of the scatter ellipse: tan(2 phi) = 2 cxy / (cxx - cyy); normal is perpendicular.
-  const double phi = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
-  return {-std::sin(phi), std::cos(phi)};
+  // Smaller eigenvalue of [[cxx, cxy], [cxy, cyy]] and its eigenvector (no trigonometry):
+  // (C - l I) v = 0 gives v = (cxy, l - cxx) or (l - cyy, cxy); take the better conditioned.
+  const double half_diff = 0.5 * (cxx - cyy);
+  const double l = 0.5 * (cxx + cyy) - std::sqrt(half_diff * half_diff + cxy * cxy);
+  const Eigen::Vector2d v1(cxy, l - cxx), v2(l - cyy, cxy);
+  const Eigen::Vector2d v = v1.squaredNorm() > v2.squaredNorm() ? v1 : v2;
+  const double norm = v.norm();
+  return norm > 0 ? Eigen::Vector2d(v / norm) : Eigen::Vector2d::Zero();
 }
 
 IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, const IcpTargetConfig& config) {
@@ -69,6 +74,14 @@ IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, c
         nb.push_back(t.points[static_cast<size_t>(j)]);
     }
     if (nb.size() >= 3) t.normals[static_cast<size_t>(k)] = FitNormal(nb.data(), static_cast<int>(nb.size()));
+  }
+  t.full_circle = full_circle;
+  t.inverse_increment = 1.0 / geometry.angle_increment_rad;
+  t.beam_lookup.assign(static_cast<size_t>(beams + 2 * IcpTarget::kBeamPad), -1);
+  for (int b = -IcpTarget::kBeamPad; b < beams + IcpTarget::kBeamPad; ++b) {
+    const int wrapped = full_circle ? ((b % beams) + beams) % beams : b;
+    if (wrapped >= 0 && wrapped < beams)
+      t.beam_lookup[static_cast<size_t>(b + IcpTarget::kBeamPad)] = t.point_of_beam[static_cast<size_t>(wrapped)];
   }
   if (config.build_kd_tree) t.kd_tree = std::make_shared<const KdTree2d>(t.points);
   return t;
@@ -102,36 +115,6 @@ bool NearestByKdTree(const IcpTarget& target, const Eigen::Vector2d& q, int* ind
   if (target.kd_tree->tree.knnSearch(q.data(), 1, &i, &d2) == 0) return false;
   *index = static_cast<int>(i);
   *dist2_m2 = d2;
-  return true;
-}
-
-bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& q, int window_beams, int* index,
-                         double* dist2_m2) {
-  const int beams = static_cast<int>(target.point_of_beam.size());
-  assert(beams > 0 && "IcpTarget has no beam index (not built from a scan)");
-  const double bearing = std::atan2(q.y(), q.x());
-  // Beam whose ray is nearest to the bearing, wrapped into [0, beams) for a full circle.
-  const bool full_circle = std::abs(beams * target.angle_increment_rad - 2 * M_PI) < 1e-6;
-  double f = NormalizeAngle(bearing - target.angle_min_rad) / target.angle_increment_rad;
-  if (full_circle && f < 0) f += beams;
-  const int center = static_cast<int>(std::lround(f));
-  double best = std::numeric_limits<double>::infinity();
-  int best_i = -1;
-  for (int db = -window_beams; db <= window_beams; ++db) {
-    int b = center + db;
-    if (full_circle) b = ((b % beams) + beams) % beams;
-    if (b < 0 || b >= beams) continue;
-    const int j = target.point_of_beam[static_cast<size_t>(b)];
-    if (j < 0) continue;
-    const double d2 = (target.points[static_cast<size_t>(j)] - q).squaredNorm();
-    if (d2 < best) {
-      best = d2;
-      best_i = j;
-    }
-  }
-  if (best_i < 0) return false;
-  *index = best_i;
-  *dist2_m2 = best;
   return true;
 }
 

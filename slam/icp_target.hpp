@@ -3,6 +3,10 @@
 // point's correspondence — a kd-tree (nanoflann, any cloud) and projection into the
 // reference scan's beam index (constant time, only for a single scan in its own frame).
 #include <Eigen/Core>
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -21,6 +25,12 @@ struct IcpTarget {
   double angle_min_rad = 0.0;
   double angle_increment_rad = 0.0;
   std::vector<int> point_of_beam;  ///< point index per beam, -1 without a point; empty = no model
+  /// point_of_beam padded with kBeamPad beams each side (wrapped for a full circle, -1
+  /// otherwise), so a window search needs no modulo.
+  static constexpr int kBeamPad = 16;
+  std::vector<int> beam_lookup;
+  double inverse_increment = 0.0;  ///< [1/rad]
+  bool full_circle = false;
 };
 
 struct IcpTargetConfig {
@@ -38,13 +48,50 @@ IcpTarget MakeCloudTarget(std::vector<Eigen::Vector2d> points, const IcpTargetCo
 
 /// Nearest target point to q (target frame). False when the target is empty.
 bool NearestByKdTree(const IcpTarget& target, const Eigen::Vector2d& q, int* index, double* dist2_m2);
-/// The nearest among the target points on beams within +-window_beams of q's bearing.
-/// False when none of those beams has a point.
-bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& q, int window_beams, int* index,
-                         double* dist2_m2);
-
 /// Unit normal of a 2D point set by PCA: the eigenvector of the smaller eigenvalue of the
 /// scatter matrix (closed form for 2x2). (0, 0) for fewer than 2 distinct points.
 Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count);
+
+/// atan2 with |error| <= 1e-5 rad (Abramowitz & Stegun 4.4.49); enough to pick a beam.
+inline double FastAtan2(double y, double x) {
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double mx = std::max(ax, ay);
+  if (mx == 0.0) return 0.0;
+  const double a = std::min(ax, ay) / mx, a2 = a * a;
+  double r = a * (0.9998660 + a2 * (-0.3302995 + a2 * (0.1801410 + a2 * (-0.0851330 + a2 * 0.0208351))));
+  if (ay > ax) r = M_PI_2 - r;
+  if (x < 0) r = M_PI - r;
+  return y < 0 ? -r : r;
+}
+
+/// The nearest among the target points on beams within +-window_beams (<= kBeamPad) of
+/// q's bearing. False when none of those beams has a point. Inline: ICP's inner loop.
+inline bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& q, int window_beams, int* index,
+                                double* dist2_m2) {
+  const int beams = static_cast<int>(target.point_of_beam.size());
+  assert(beams > 0 && "IcpTarget has no beam index (not built from a scan)");
+  assert(window_beams <= IcpTarget::kBeamPad);
+  double f = (FastAtan2(q.y(), q.x()) - target.angle_min_rad) * target.inverse_increment;
+  if (target.full_circle) {
+    if (f < -0.5) f += beams;
+    else if (f >= beams - 0.5) f -= beams;
+  }
+  const int center = static_cast<int>(std::floor(f + 0.5));
+  const int lo = std::max(center - window_beams, -IcpTarget::kBeamPad);
+  const int hi = std::min(center + window_beams, beams + IcpTarget::kBeamPad - 1);
+  const int* lookup = target.beam_lookup.data() + IcpTarget::kBeamPad;
+  double best = std::numeric_limits<double>::infinity();
+  int best_i = -1;
+  for (int b = lo; b <= hi; ++b) {
+    const int j = lookup[b];
+    if (j < 0) continue;
+    const double d2 = (target.points[static_cast<size_t>(j)] - q).squaredNorm();
+    if (d2 < best) best = d2, best_i = j;
+  }
+  if (best_i < 0) return false;
+  *index = best_i;
+  *dist2_m2 = best;
+  return true;
+}
 
 }  // namespace slambox
