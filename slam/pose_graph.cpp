@@ -1,0 +1,149 @@
+// The 2D pose graph error (g2o's convention) and its solution with Ceres: one 2-vector
+// block t and one yaw block theta per pose (yaw on the angle manifold), the anchor
+// constant, sparse normal Cholesky, robust kernels on loop-closure edges only.
+#include "slam/pose_graph.hpp"
+
+#include <ceres/ceres.h>
+
+#include <chrono>
+#include <memory>
+
+#include "core/error.hpp"
+#include "slam/pose_graph_cost.hpp"
+
+namespace slambox {
+
+Eigen::Vector3d EdgeError(const SE2& T_i, const SE2& T_j, const SE2& T_ij) {
+  Eigen::Vector3d e;
+  e.head<2>() = T_i.rotation().transpose() * (T_j.translation() - T_i.translation()) - T_ij.translation();
+  e.z() = NormalizeAngle(T_j.theta - T_i.theta - T_ij.theta);
+  return e;
+}
+
+double Chi2(const PoseGraph& graph) {
+  const int n = static_cast<int>(graph.poses.size());
+  double chi2 = 0.0;
+  for (const PoseGraphEdge& edge : graph.edges) {
+    if (edge.from < 0 || edge.from >= n || edge.to < 0 || edge.to >= n) continue;
+    const Eigen::Vector3d e = EdgeError(graph.poses[edge.from], graph.poses[edge.to], edge.T_from_to);
+    chi2 += e.dot(edge.information * e);
+  }
+  return chi2;
+}
+
+namespace {
+
+std::unique_ptr<ceres::LossFunction> MakeLoopLoss(RobustKernel kernel, double scale) {
+  switch (kernel) {
+    case RobustKernel::kNone: return nullptr;
+    case RobustKernel::kHuber: return std::make_unique<ceres::HuberLoss>(scale);
+    case RobustKernel::kCauchy: return std::make_unique<ceres::CauchyLoss>(scale);
+    case RobustKernel::kDcs: return std::make_unique<DcsLoss>(scale);
+  }
+  return nullptr;
+}
+
+void ValidateGraph(const PoseGraph& graph, const PoseGraphSolveOptions& options,
+                   std::vector<Eigen::Matrix3d>* sqrt_informations) {
+  const int n = static_cast<int>(graph.poses.size());
+  if (n == 0) throw InputError("", 0, "the pose graph has no poses", "give at least one pose");
+  if (graph.anchor < 0 || graph.anchor >= n)
+    throw InputError("", 0, "anchor " + std::to_string(graph.anchor) + " is not a pose index (0.." +
+                                std::to_string(n - 1) + ")",
+                     "set PoseGraph::anchor to an existing pose");
+  if (!(options.kernel_scale > 0.0))
+    throw InputError("", 0, "robust kernel scale must be positive", "set kernel_scale > 0");
+  sqrt_informations->resize(graph.edges.size());
+  for (size_t k = 0; k < graph.edges.size(); ++k) {
+    const PoseGraphEdge& edge = graph.edges[k];
+    const std::string name = "edge " + std::to_string(k) + " (" + std::to_string(edge.from) + " -> " +
+                             std::to_string(edge.to) + ")";
+    if (edge.from < 0 || edge.from >= n || edge.to < 0 || edge.to >= n)
+      throw InputError("", 0, name + " names a missing pose (the graph has " + std::to_string(n) + ")",
+                       "connect edges only to poses 0.." + std::to_string(n - 1));
+    if (edge.from == edge.to)
+      throw InputError("", 0, name + " connects a pose to itself", "remove the edge");
+    if (!SqrtInformation(edge.information, &(*sqrt_informations)[k]))
+      throw InputError("", 0, name + " has an information matrix that is not symmetric positive definite",
+                       "give a symmetric positive definite 3x3 information matrix");
+  }
+}
+
+}  // namespace
+
+PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Eigen::Matrix3d> sqrt_informations;
+  ValidateGraph(graph, options, &sqrt_informations);
+
+  PoseGraphSolveResult result;
+  result.chi2_initial = Chi2(graph);
+
+  // Parameters: t (2) and theta (1) per pose, copied out of the SE2s and back.
+  const size_t n = graph.poses.size();
+  std::vector<double> t(2 * n), theta(n);
+  for (size_t i = 0; i < n; ++i) {
+    t[2 * i] = graph.poses[i].x;
+    t[2 * i + 1] = graph.poses[i].y;
+    theta[i] = graph.poses[i].theta;
+  }
+
+  std::unique_ptr<ceres::LossFunction> loop_loss = MakeLoopLoss(options.loop_kernel, options.kernel_scale);
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  std::unique_ptr<ceres::Manifold> angle_manifold(MakeAngleManifold());
+  for (size_t k = 0; k < graph.edges.size(); ++k) {
+    const PoseGraphEdge& edge = graph.edges[k];
+    const size_t i = edge.from, j = edge.to;
+    ceres::LossFunction* loss = edge.loop_closure ? loop_loss.get() : nullptr;
+    problem.AddResidualBlock(new PoseGraphEdgeCost(edge.T_from_to, sqrt_informations[k]), loss, &t[2 * i],
+                             &theta[i], &t[2 * j], &theta[j]);
+    problem.SetManifold(&theta[i], angle_manifold.get());
+    problem.SetManifold(&theta[j], angle_manifold.get());
+  }
+  const size_t a = graph.anchor;
+  if (problem.HasParameterBlock(&theta[a])) {
+    problem.SetParameterBlockConstant(&t[2 * a]);
+    problem.SetParameterBlockConstant(&theta[a]);
+  }
+
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.num_threads = options.num_threads;
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  if (problem.NumResidualBlocks() > 0) {
+    ceres::Solve(solver_options, &problem, &summary);
+    result.iterations = static_cast<int>(summary.iterations.size()) - 1;  // entry 0 is the start
+    result.termination = ceres::TerminationTypeToString(summary.termination_type);
+    result.usable = summary.IsSolutionUsable();
+  } else {
+    result.termination = "CONVERGENCE";
+    result.usable = true;
+  }
+
+  if (result.usable) {
+    for (size_t i = 0; i < n; ++i) graph.poses[i] = SE2(t[2 * i], t[2 * i + 1], theta[i]);
+  }
+  result.chi2_final = Chi2(graph);
+
+  // IRLS weight rho'(chi2_edge) at the solution: 1 for a trusted edge, ~0 for a rejected one.
+  result.edge_weights.assign(graph.edges.size(), 1.0);
+  if (loop_loss) {
+    for (size_t k = 0; k < graph.edges.size(); ++k) {
+      const PoseGraphEdge& edge = graph.edges[k];
+      if (!edge.loop_closure) continue;
+      const Eigen::Vector3d e = EdgeError(graph.poses[edge.from], graph.poses[edge.to], edge.T_from_to);
+      double rho[3];
+      loop_loss->Evaluate(e.dot(edge.information * e), rho);
+      result.edge_weights[k] = rho[1];
+    }
+  }
+  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace slambox

@@ -1,0 +1,176 @@
+#include "slam/pose_graph_init.hpp"
+
+#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <deque>
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace slambox {
+namespace {
+
+void CheckGraph(const PoseGraph& graph) {
+  const int n = static_cast<int>(graph.poses.size());
+  if (graph.anchor < 0 || graph.anchor >= n)
+    throw InputError("", 0, "anchor is not a pose index", "set PoseGraph::anchor to an existing pose");
+  for (const PoseGraphEdge& e : graph.edges)
+    if (e.from < 0 || e.from >= n || e.to < 0 || e.to >= n)
+      throw InputError("", 0, "edge " + std::to_string(e.from) + " -> " + std::to_string(e.to) + " names a missing pose",
+                       "connect edges only to poses 0.." + std::to_string(n - 1));
+}
+
+// Index of each reached, non-anchor pose among the unknowns; -1 otherwise.
+std::vector<int> UnknownIndex(const PoseGraph& graph, const SpanningTree& tree, int* count) {
+  std::vector<int> index(graph.poses.size(), -1);
+  *count = 0;
+  for (int v : tree.order)
+    if (v != graph.anchor) index[v] = (*count)++;
+  return index;
+}
+
+bool Reached(const SpanningTree& tree, const PoseGraph& graph, int v) {
+  return v == graph.anchor || tree.parent_edge[v] >= 0;
+}
+
+}  // namespace
+
+SpanningTree BuildSpanningTree(const PoseGraph& graph, bool prefer_odometry) {
+  CheckGraph(graph);
+  const int n = static_cast<int>(graph.poses.size());
+  std::vector<std::vector<int>> incident(n);
+  for (size_t k = 0; k < graph.edges.size(); ++k) {
+    incident[graph.edges[k].from].push_back(static_cast<int>(k));
+    incident[graph.edges[k].to].push_back(static_cast<int>(k));
+  }
+  // 0-1 BFS: an odometry edge costs 0, a loop closure 1, so the tree follows odometry.
+  const int kInf = std::numeric_limits<int>::max();
+  std::vector<int> dist(n, kInf);
+  std::vector<char> done(n, 0);
+  SpanningTree tree;
+  tree.parent_edge.assign(n, -1);
+  tree.theta_unwrapped.assign(n, 0.0);
+  std::deque<int> queue{graph.anchor};
+  dist[graph.anchor] = 0;
+  while (!queue.empty()) {
+    const int u = queue.front();
+    queue.pop_front();
+    if (done[u]) continue;
+    done[u] = 1;
+    tree.order.push_back(u);
+    for (int k : incident[u]) {
+      const PoseGraphEdge& e = graph.edges[k];
+      const int v = e.from == u ? e.to : e.from;
+      const int w = (e.loop_closure || !prefer_odometry) ? 1 : 0;
+      if (done[v] || dist[u] + w >= dist[v]) continue;
+      dist[v] = dist[u] + w;
+      tree.parent_edge[v] = k;
+      if (w == 0) queue.push_front(v); else queue.push_back(v);
+    }
+  }
+  tree.theta_unwrapped[graph.anchor] = graph.poses[graph.anchor].theta;
+  for (int v : tree.order) {
+    if (v == graph.anchor) continue;
+    const PoseGraphEdge& e = graph.edges[tree.parent_edge[v]];
+    tree.theta_unwrapped[v] = e.to == v ? tree.theta_unwrapped[e.from] + e.T_from_to.theta
+                                        : tree.theta_unwrapped[e.to] - e.T_from_to.theta;
+  }
+  return tree;
+}
+
+std::vector<SE2> SpanningTreeInitialization(const PoseGraph& graph) {
+  const SpanningTree tree = BuildSpanningTree(graph);
+  std::vector<SE2> poses = graph.poses;
+  for (int v : tree.order) {
+    if (v == graph.anchor) continue;
+    const PoseGraphEdge& e = graph.edges[tree.parent_edge[v]];
+    poses[v] = e.to == v ? poses[e.from] * e.T_from_to : poses[e.to] * e.T_from_to.inverse();
+  }
+  return poses;
+}
+
+std::vector<double> LagoOrientations(const PoseGraph& graph, const SpanningTree& tree) {
+  int m = 0;
+  const std::vector<int> index = UnknownIndex(graph, tree, &m);
+  std::vector<double> theta = tree.theta_unwrapped;
+  if (m == 0) return theta;
+  // Minimize sum_e w_e (theta_j - theta_i - delta_e - 2 pi k_e)^2, with k_e the integer
+  // making the measurement agree with the tree (k_e = 0 on tree edges), and w_e the
+  // marginal angular information 1 / (Omega^-1)_33.
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(m);
+  for (const PoseGraphEdge& e : graph.edges) {
+    if (!Reached(tree, graph, e.from) || !Reached(tree, graph, e.to)) continue;
+    const double gap = tree.theta_unwrapped[e.to] - tree.theta_unwrapped[e.from] - e.T_from_to.theta;
+    const double delta = e.T_from_to.theta + 2.0 * M_PI * std::round(gap / (2.0 * M_PI));
+    const double w = 1.0 / e.information.inverse()(2, 2);
+    const int i = index[e.from], j = index[e.to];
+    // Gradient rows: d/dtheta_j: w (theta_j - theta_i - delta); d/dtheta_i: the negative.
+    if (j >= 0) {
+      triplets.emplace_back(j, j, w);
+      b(j) += w * delta;
+      if (i >= 0) triplets.emplace_back(j, i, -w); else b(j) += w * theta[e.from];
+    }
+    if (i >= 0) {
+      triplets.emplace_back(i, i, w);
+      b(i) -= w * delta;
+      if (j >= 0) triplets.emplace_back(i, j, -w); else b(i) += w * theta[e.to];
+    }
+  }
+  Eigen::SparseMatrix<double> A(m, m);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+  const Eigen::VectorXd x = ldlt.solve(b);
+  if (ldlt.info() != Eigen::Success || !x.allFinite()) return tree.theta_unwrapped;
+  for (size_t v = 0; v < index.size(); ++v)
+    if (index[v] >= 0) theta[v] = x(index[v]);
+  return theta;
+}
+
+std::vector<SE2> LagoInitialization(const PoseGraph& graph) {
+  const SpanningTree tree = BuildSpanningTree(graph, false);
+  const std::vector<double> theta = LagoOrientations(graph, tree);
+  int m = 0;
+  const std::vector<int> index = UnknownIndex(graph, tree, &m);
+  std::vector<SE2> poses = graph.poses;
+  if (m == 0) return poses;
+  // Given theta, each edge is linear in positions: e = R_i^T (t_j - t_i) - t_ij, i.e.
+  // t_j - t_i - R_i t_ij weighted by W = R_i Omega_tt R_i^T (Omega_tt: the 2x2 block, the
+  // positional information conditioned on the angles).
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * m);
+  const Eigen::Vector2d t_anchor = graph.poses[graph.anchor].translation();
+  auto add_block = [&](int r, int c, const Eigen::Matrix2d& M) {
+    for (int a = 0; a < 2; ++a)
+      for (int d = 0; d < 2; ++d) triplets.emplace_back(2 * r + a, 2 * c + d, M(a, d));
+  };
+  for (const PoseGraphEdge& e : graph.edges) {
+    if (!Reached(tree, graph, e.from) || !Reached(tree, graph, e.to)) continue;
+    const Eigen::Matrix2d R_i = RotationMatrix(theta[e.from]);
+    const Eigen::Matrix2d W = R_i * e.information.topLeftCorner<2, 2>() * R_i.transpose();
+    const Eigen::Vector2d Wd = W * (R_i * e.T_from_to.translation());
+    const int i = index[e.from], j = index[e.to];
+    if (j >= 0) {
+      add_block(j, j, W);
+      b.segment<2>(2 * j) += Wd;
+      if (i >= 0) add_block(j, i, -W); else b.segment<2>(2 * j) += W * t_anchor;
+    }
+    if (i >= 0) {
+      add_block(i, i, W);
+      b.segment<2>(2 * i) -= Wd;
+      if (j >= 0) add_block(i, j, -W); else b.segment<2>(2 * i) += W * t_anchor;
+    }
+  }
+  Eigen::SparseMatrix<double> A(2 * m, 2 * m);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+  const Eigen::VectorXd x = ldlt.solve(b);
+  if (ldlt.info() != Eigen::Success || !x.allFinite()) return SpanningTreeInitialization(graph);
+  for (size_t v = 0; v < index.size(); ++v)
+    if (index[v] >= 0) poses[v] = SE2(x(2 * index[v]), x(2 * index[v] + 1), theta[v]);
+  return poses;
+}
+
+}  // namespace slambox

@@ -1,0 +1,97 @@
+// `slambox optimize`: JSON keys and values on a synthetic graph, the written output,
+// --init choices, and a clear InputError for a bad file.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "slam/g2o_io.hpp"
+#include "tests/slam/pose_graph_test_support.hpp"
+
+namespace slambox {
+namespace {
+
+std::string RunOptimize(std::vector<std::string> args) {
+  CLI::App app;
+  AddOptimizeCommand(app);
+  args.insert(args.begin(), "optimize");
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  ::testing::internal::CaptureStdout();
+  try {
+    app.parse(reversed);
+  } catch (...) {
+    std::cout.flush();
+    ::testing::internal::GetCapturedStdout();
+    throw;
+  }
+  std::cout.flush();
+  std::fflush(stdout);
+  return ::testing::internal::GetCapturedStdout();
+}
+
+class OptimizeCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = (std::filesystem::temp_directory_path() / ("slambox_optimize_" + std::to_string(::getpid()))).string();
+    std::filesystem::create_directories(dir_);
+    s_ = testing::MakeSquareGraph({.laps = 2, .sigma_xy_m = 0.05, .sigma_theta_rad = 0.02, .seed = 4});
+    PoseGraph perturbed = s_.graph;
+    perturbed.poses = testing::Perturbed(s_.truth, 0, 0.2, 0.1, 9);
+    WritePoseGraph(dir_ + "/in.g2o", perturbed);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string dir_;
+  testing::SyntheticGraph s_;
+};
+
+TEST_F(OptimizeCommand, JsonHasTheDocumentedKeysAndWritesTheSolution) {
+  const std::string out = RunOptimize({dir_ + "/in.g2o", "-o", dir_ + "/out.g2o", "--json"});
+  const nlohmann::json j = nlohmann::json::parse(out);
+  for (const char* key : {"vertices", "edges", "chi2_initial", "chi2_final", "iterations", "time_s", "termination"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["vertices"], s_.graph.poses.size());
+  EXPECT_EQ(j["edges"], s_.graph.edges.size());
+  EXPECT_EQ(j["init"], "file");
+  EXPECT_EQ(j["termination"], "CONVERGENCE");
+  EXPECT_LT(j["chi2_final"].get<double>(), j["chi2_initial"].get<double>());
+  PoseGraphFile solved = ReadPoseGraph(dir_ + "/out.g2o");
+  EXPECT_NEAR(Chi2(solved.graph), j["chi2_final"].get<double>(), 1e-9 * j["chi2_final"].get<double>());
+  // Same optimum from the truth.
+  PoseGraph from_truth = s_.graph;
+  EXPECT_NEAR(SolvePoseGraph(from_truth).chi2_final, j["chi2_final"].get<double>(), 1e-5);
+}
+
+TEST_F(OptimizeCommand, TextOutputAndInitChoices) {
+  const std::string text = RunOptimize({dir_ + "/in.g2o", "--init", "lago", "--robust", "dcs"});
+  for (const char* word : {"vertices", "edges", "chi2_initial", "chi2_final", "iterations", "time_s",
+                           "termination", "init          lago"})
+    EXPECT_NE(text.find(word), std::string::npos) << word << "\n" << text;
+  // An edges-only file cannot use --init file.
+  std::ofstream(dir_ + "/edges.g2o") << "EDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\n";
+  EXPECT_THROW(RunOptimize({dir_ + "/edges.g2o", "--init", "file"}), InputError);
+  const nlohmann::json j = nlohmann::json::parse(RunOptimize({dir_ + "/edges.g2o", "--json"}));
+  EXPECT_EQ(j["init"], "lago");
+  EXPECT_LT(j["chi2_final"].get<double>(), 1e-20);
+}
+
+TEST_F(OptimizeCommand, BadFileIsAnInputErrorAndWritesNothing) {
+  std::ofstream(dir_ + "/bad.g2o") << "VERTEX_SE2 0 0 0 0\nEDGE_SE2 0 3 1 0 0 1 0 0 1 0 1\n";
+  try {
+    RunOptimize({dir_ + "/bad.g2o", "-o", dir_ + "/out.g2o"});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_NE(std::string(e.what()).find("bad.g2o:2"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/out.g2o"));
+  EXPECT_THROW(RunOptimize({dir_ + "/in.g2o", "--robust", "tukey"}), CLI::ValidationError);
+}
+
+}  // namespace
+}  // namespace slambox
