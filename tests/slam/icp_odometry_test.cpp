@@ -35,13 +35,6 @@ TEST(IcpOdometry, VariantsAllWork) {
     std::printf("variant %s: %.3f m\n", v.begin()->second.c_str(), icp);
     EXPECT_LT(icp, 0.3) << v.begin()->first << "=" << v.begin()->second;
   }
-  // Point-to-point slides along walls (sampling bias toward zero motion): weaker in a
-  // corridor, but still no worse than wheel odometry.
-  const double odo = testing::PositionRmse(testing::RunModule(DeadReckoningModule(), s), s);
-  const double p2p = testing::PositionRmse(
-      testing::RunModule(IcpOdometryModule(), s, {{"metric", "point-to-point"}, {"max_iterations", "60"}}), s);
-  std::printf("point-to-point %.3f m, odometry %.3f m\n", p2p, odo);
-  EXPECT_LT(p2p, odo);
 }
 
 TEST(IcpOdometry, Deterministic) {
