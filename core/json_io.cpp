@@ -191,4 +191,50 @@ json ToJson(const SensorSuite& s) {
   return j;
 }
 
+SensorSuite SensorSuiteFromJson(const json& j) {
+  SensorSuite s;
+  if (j.contains("odometry")) {
+    const auto& o = j.at("odometry");
+    OdometryConfig c;
+    c.rate_hz = o.value("rate_hz", c.rate_hz);
+    c.alpha = o.value("alpha", c.alpha);
+    s.odometry = c;
+  }
+  if (j.contains("lidar")) {
+    const auto& l = j.at("lidar");
+    LidarConfig c;
+    c.rate_hz = l.value("rate_hz", c.rate_hz);
+    c.beams = l.value("beams", c.beams);
+    c.fov_deg = l.value("fov_deg", c.fov_deg);
+    c.range_min_m = l.value("range_min_m", c.range_min_m);
+    c.range_max_m = l.value("range_max_m", c.range_max_m);
+    c.sigma_range_m = l.value("sigma_range_m", c.sigma_range_m);
+    c.sigma_bearing_deg = l.value("sigma_bearing_deg", c.sigma_bearing_deg);
+    c.dropout_prob = l.value("dropout_prob", c.dropout_prob);
+    s.lidar = c;
+  }
+  if (j.contains("landmarks")) {
+    const auto& l = j.at("landmarks");
+    LandmarkSensorConfig c;
+    c.rate_hz = l.value("rate_hz", c.rate_hz);
+    c.range_max_m = l.value("range_max_m", c.range_max_m);
+    c.fov_deg = l.value("fov_deg", c.fov_deg);
+    c.sigma_range_m = l.value("sigma_range_m", c.sigma_range_m);
+    c.sigma_bearing_deg = l.value("sigma_bearing_deg", c.sigma_bearing_deg);
+    c.known_ids = l.value("known_ids", c.known_ids);
+    c.detection_prob = l.value("detection_prob", c.detection_prob);
+    c.clutter_per_scan = l.value("clutter_per_scan", c.clutter_per_scan);
+    s.landmarks = c;
+  }
+  if (j.contains("gyro")) {
+    const auto& g = j.at("gyro");
+    GyroConfig c;
+    c.rate_hz = g.value("rate_hz", c.rate_hz);
+    c.sigma_dps = g.value("sigma_dps", c.sigma_dps);
+    c.bias_dps = g.value("bias_dps", c.bias_dps);
+    s.gyro = c;
+  }
+  return s;
+}
+
 }  // namespace slambox

@@ -16,5 +16,7 @@ World WorldFromJson(const nlohmann::json& j);
 nlohmann::json ToJson(const Estimate& estimate);
 Estimate EstimateFromJson(const nlohmann::json& j);
 nlohmann::json ToJson(const SensorSuite& sensors);
+/// Inverse of ToJson(SensorSuite); a missing key keeps the config struct's default.
+SensorSuite SensorSuiteFromJson(const nlohmann::json& j);
 
 }  // namespace slambox

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages slambox needs, only those missing. Idempotent.
 # Runs apt-get as root, or through sudo when not root.
+# --with-slurm also installs a single-node Slurm (for the job-array test).
 set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config
@@ -9,6 +10,7 @@ PACKAGES=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnanoflann-dev
   libpng-dev libfreetype-dev fonts-dejavu-core
 )
+[ "${1:-}" = "--with-slurm" ] && PACKAGES+=(slurmctld slurmd slurm-client munge)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -58,6 +58,8 @@ struct RobotSpec {
   std::vector<Eigen::Vector2d> path;  ///< waypoints, followed in order
   int laps = 1;
   std::optional<KidnapSpec> kidnap;
+  int start_line = 0;           ///< line of `start:` in the source file, for errors
+  std::vector<int> path_lines;  ///< line of each waypoint, for errors
 };
 
 struct Scenario {

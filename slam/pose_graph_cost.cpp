@@ -7,43 +7,33 @@ namespace slambox {
 
 bool PoseGraphEdgeCost::Evaluate(double const* const* parameters, double* residuals,
                                  double** jacobians) const {
-  const Eigen::Vector2d t_i(parameters[0][0], parameters[0][1]);
-  const double theta_i = parameters[1][0];
-  const Eigen::Vector2d t_j(parameters[2][0], parameters[2][1]);
-  const double theta_j = parameters[3][0];
-
-  const double c = std::cos(theta_i), s = std::sin(theta_i);
-  const Eigen::Matrix2d Rt_i = RotationMatrix(theta_i).transpose();
-  const Eigen::Vector2d dt = t_j - t_i;
-  Eigen::Vector3d e;
-  e.head<2>() = Rt_i * dt - T_ij_.translation();
-  e.z() = NormalizeAngle(theta_j - theta_i - T_ij_.theta);
+  const double* p_i = parameters[0];
+  const double* p_j = parameters[1];
+  const double c = std::cos(p_i[2]), s = std::sin(p_i[2]);
+  const double dx = p_j[0] - p_i[0], dy = p_j[1] - p_i[1];
+  // e = [R_i^T (t_j - t_i) - t_ij ; wrap(theta_j - theta_i - theta_ij)]
+  const Eigen::Vector3d e(c * dx + s * dy - T_ij_.x, -s * dx + c * dy - T_ij_.y,
+                          NormalizeAngle(p_j[2] - p_i[2] - T_ij_.theta));
   Eigen::Map<Eigen::Vector3d> r(residuals);
   r = sqrt_information_ * e;
   if (jacobians == nullptr) return true;
-
-  // de/dt_i = [-R_i^T; 0], de/dtheta_i = [dR_i^T/dtheta (t_j - t_i); -1],
-  // de/dt_j = [R_i^T; 0],  de/dtheta_j = [0; 0; 1]; then r = U e.
+  // de/dpose_i = [-R_i^T, dR_i^T/dtheta (t_j - t_i); 0 0 -1],  de/dpose_j = [R_i^T, 0; 0 0 1].
+  using Jacobian = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
   if (jacobians[0] != nullptr) {
-    Eigen::Matrix<double, 3, 2> J = Eigen::Matrix<double, 3, 2>::Zero();
-    J.topRows<2>() = -Rt_i;
-    Eigen::Map<Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> J_r(jacobians[0]);
+    Jacobian J;
+    J << -c, -s, -s * dx + c * dy,  //
+        s, -c, -c * dx - s * dy,    //
+        0.0, 0.0, -1.0;
+    Eigen::Map<Jacobian> J_r(jacobians[0]);
     J_r = sqrt_information_ * J;
   }
   if (jacobians[1] != nullptr) {
-    const Eigen::Vector3d J(-s * dt.x() + c * dt.y(), -c * dt.x() - s * dt.y(), -1.0);
-    Eigen::Map<Eigen::Vector3d> J_r(jacobians[1]);
+    Jacobian J;
+    J << c, s, 0.0,  //
+        -s, c, 0.0,  //
+        0.0, 0.0, 1.0;
+    Eigen::Map<Jacobian> J_r(jacobians[1]);
     J_r = sqrt_information_ * J;
-  }
-  if (jacobians[2] != nullptr) {
-    Eigen::Matrix<double, 3, 2> J = Eigen::Matrix<double, 3, 2>::Zero();
-    J.topRows<2>() = Rt_i;
-    Eigen::Map<Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> J_r(jacobians[2]);
-    J_r = sqrt_information_ * J;
-  }
-  if (jacobians[3] != nullptr) {
-    Eigen::Map<Eigen::Vector3d> J_r(jacobians[3]);
-    J_r = sqrt_information_.col(2);
   }
   return true;
 }

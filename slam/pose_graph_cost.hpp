@@ -4,6 +4,8 @@
 #include <ceres/autodiff_manifold.h>
 #include <ceres/jet.h>
 #include <ceres/loss_function.h>
+#include <ceres/manifold.h>
+#include <ceres/product_manifold.h>
 #include <ceres/sized_cost_function.h>
 
 #include <Eigen/Core>
@@ -13,8 +15,8 @@
 namespace slambox {
 
 /// Whitened edge residual r = U e with U^T U = Omega (U upper-triangular Cholesky factor),
-/// so |r|^2 = e^T Omega e. Parameter blocks: t_i [m] (2), theta_i [rad] (1), t_j (2), theta_j (1).
-class PoseGraphEdgeCost final : public ceres::SizedCostFunction<3, 2, 1, 2, 1> {
+/// so |r|^2 = e^T Omega e. Parameter blocks: pose_i = (x [m], y [m], theta [rad]), pose_j.
+class PoseGraphEdgeCost final : public ceres::SizedCostFunction<3, 3, 3> {
  public:
   PoseGraphEdgeCost(const SE2& T_ij, const Eigen::Matrix3d& sqrt_information)
       : T_ij_(T_ij), sqrt_information_(sqrt_information) {}
@@ -57,6 +59,10 @@ struct AngleManifoldFunctor {
 inline ceres::Manifold* MakeAngleManifold() {
   return new ceres::AutoDiffManifold<AngleManifoldFunctor, 1, 1>;
 }
+
+/// A pose block (x, y, theta): Euclidean in x, y and the angle manifold in theta.
+using PoseManifold =
+    ceres::ProductManifold<ceres::EuclideanManifold<2>, ceres::AutoDiffManifold<AngleManifoldFunctor, 1, 1>>;
 
 /// Dynamic Covariance Scaling (Agarwal, Tipaldi, Spinello, Stachniss, Burgard, ICRA 2013)
 /// as an M-estimator on s = chi2 = |r|^2. DCS scales the residual by

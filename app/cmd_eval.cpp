@@ -1,0 +1,125 @@
+// `slambox eval --gt GT.tum --est EST.tum`: scores any TUM trajectory against another
+// (also files from other tools; 3D files are reduced to x, y and yaw) with the same
+// evaluator `slambox run` uses. --json prints one algorithm's metrics.json entry.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "core/tum.hpp"
+#include "eval/evaluate.hpp"
+
+namespace slambox {
+
+namespace {
+struct EvalArgs {
+  std::string gt_path;
+  std::string est_path;
+  std::string align = "none";
+  double delta = 1.0;
+  std::string delta_unit = "m";
+  bool all_pairs = false;
+  bool pairs_from_reference = false;
+  double t_max_diff_s = 0.01;
+  bool interpolate = false;
+  bool json = false;
+};
+
+EvalOptions ToOptions(const EvalArgs& a) {
+  EvalOptions o;
+  if (a.align == "none") o.align = AlignMode::kNone;
+  else if (a.align == "se2") o.align = AlignMode::kSE2;
+  else if (a.align == "origin") o.align = AlignMode::kOrigin;
+  else throw InputError("--align", 0, "unknown alignment '" + a.align + "'", "use none, se2 or origin");
+  if (!ParseDeltaUnit(a.delta_unit, o.rpe.unit))
+    throw InputError("--delta-unit", 0, "unknown delta unit '" + a.delta_unit + "'", "use m, f or d");
+  if (!(a.delta > 0.0)) throw InputError("--delta", 0, "delta must be positive", "give e.g. --delta 1");
+  if (o.rpe.unit == DeltaUnit::kFrames && a.delta != std::floor(a.delta))
+    throw InputError("--delta", 0, "a delta in frames must be an integer", "give e.g. --delta 10 --delta-unit f");
+  if (o.rpe.unit == DeltaUnit::kDegrees && a.delta > 180.0)
+    throw InputError("--delta", 0, "a delta in degrees must be within (0, 180]", "give e.g. --delta 90");
+  if (!(a.t_max_diff_s >= 0.0)) throw InputError("--t-max-diff", 0, "must be >= 0", "give e.g. 0.01");
+  o.rpe.delta = a.delta;
+  o.rpe.all_pairs = a.all_pairs;
+  o.rpe.pairs_from_reference = a.pairs_from_reference;
+  o.max_time_diff_s = a.t_max_diff_s;
+  o.interpolate_groundtruth = a.interpolate;
+  return o;
+}
+
+void PrintTable(const nlohmann::json& m, std::ostream& out) {
+  auto row = [&](const char* label, const char* key, const char* unit) {
+    char line[160];
+    if (!m.contains(key) || m[key].is_null())
+      std::snprintf(line, sizeof line, "  %-28s %12s\n", label, "-");
+    else if (m[key].is_number_integer())
+      std::snprintf(line, sizeof line, "  %-28s %12lld %s\n", label, m[key].get<long long>(), unit);
+    else
+      std::snprintf(line, sizeof line, "  %-28s %12.6g %s\n", label, m[key].get<double>(), unit);
+    out << line;
+  };
+  out << "matched poses " << m["matched_poses"] << ", ground-truth path " << m["distance_m"] << " m, status "
+      << m["status"].get<std::string>();
+  if (m.contains("reason")) out << " (" << m["reason"].get<std::string>() << ")";
+  out << "\n";
+  out << "ATE (evo APE, translation)\n";
+  for (const char* s : {"rmse", "mean", "median", "std", "min", "max"}) {
+    const std::string key = std::string("ate_") + s + "_m";
+    row(s, key.c_str(), "m");
+  }
+  row("aligned rmse (SE(2) Umeyama)", "ate_aligned_rmse_m", "m");
+  row("heading rmse", "heading_rmse_deg", "deg");
+  out << "RPE (delta " << m["rpe_delta"] << " " << m["rpe_delta_unit"].get<std::string>()
+      << (m["rpe_all_pairs"].get<bool>() ? ", all pairs" : ", consecutive pairs") << ")\n";
+  row("pairs", "rpe_pairs", "");
+  row("translation rmse", "rpe_trans_rmse_m", "m");
+  row("translation mean", "rpe_trans_mean_m", "m");
+  row("rotation rmse", "rpe_rot_rmse_deg", "deg");
+  row("rotation mean", "rpe_rot_mean_deg", "deg");
+  out << "KITTI segments (100..800 m)\n";
+  row("segments", "kitti_segments", "");
+  row("translation", "kitti_trans_percent", "%");
+  row("rotation", "kitti_rot_deg_per_m", "deg/m");
+}
+}  // namespace
+
+void AddEvalCommand(CLI::App& app) {
+  auto args = std::make_shared<EvalArgs>();
+  CLI::App* cmd = app.add_subcommand("eval", "score an estimated TUM trajectory against ground truth (evo's definitions)");
+  cmd->add_option("--gt", args->gt_path, "ground-truth trajectory (TUM: t x y z qx qy qz qw)")->required();
+  cmd->add_option("--est", args->est_path, "estimated trajectory (TUM)")->required();
+  cmd->add_option("--align", args->align,
+                  "alignment before ate_*: none (default), se2 (Umeyama, evo -a) or origin (evo --align_origin)");
+  cmd->add_option("--delta", args->delta, "RPE delta (default 1)");
+  cmd->add_option("--delta-unit", args->delta_unit, "RPE delta unit: m (default), f (frames) or d (degrees)");
+  cmd->add_flag("--all-pairs", args->all_pairs, "RPE over all pairs instead of consecutive ones (evo --all_pairs)");
+  cmd->add_flag("--pairs-from-reference", args->pairs_from_reference,
+                "choose RPE pairs on the ground truth (evo --pairs_from_reference)");
+  cmd->add_option("--t-max-diff", args->t_max_diff_s, "max. timestamp difference for matching [s] (default 0.01)");
+  cmd->add_flag("--interpolate", args->interpolate, "interpolate ground truth at the estimate's timestamps");
+  cmd->add_flag("--json", args->json, "print the metrics as JSON (the keys of one metrics.json entry)");
+  cmd->callback([args] {
+    const EvalOptions options = ToOptions(*args);
+    GroundTruth gt;
+    gt.trajectory = ReadTum(args->gt_path);
+    if (gt.trajectory.empty()) throw InputError(args->gt_path, 0, "no pose in the file", "give a non-empty TUM file");
+    Estimate est;
+    for (const auto& p : ReadTum(args->est_path)) est.trajectory.push_back({p.t_s, p.pose, Eigen::Matrix3d::Zero(), false});
+    if (est.trajectory.empty())
+      throw InputError(args->est_path, 0, "no pose in the file", "give a non-empty TUM file");
+    const Evaluation ev = EvaluateEstimate(gt, est, options);
+    if (ev.metrics["matched_poses"].get<size_t>() == 0)
+      throw InputError(args->est_path, 0,
+                       "no timestamp matches the ground truth within " + std::to_string(args->t_max_diff_s) + " s",
+                       "check that both files use the same clock, or raise --t-max-diff / use --interpolate");
+    if (args->json)
+      std::cout << ev.metrics.dump(2) << "\n";
+    else
+      PrintTable(ev.metrics, std::cout);
+  });
+}
+
+}  // namespace slambox

@@ -1,0 +1,40 @@
+// `slambox run NAME|FILE|STREAM [--algo A,B,...] [--seed N] [--set k=v]... -o DIR`
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "app/run.hpp"
+
+namespace slambox {
+
+void AddRunCommand(CLI::App& app) {
+  auto request = std::make_shared<RunRequest>();
+  auto* cmd = app.add_subcommand("run", "replay a scenario or stream to SLAM modules, score and draw them");
+  cmd->add_option("input", request->input, "built-in scenario name, scenario YAML file, or stream file")->required();
+  cmd->add_option("--algo", request->algorithms, "modules to run (comma-separated), or all")
+      ->delimiter(',')
+      ->default_str("odometry");
+  cmd->add_option("--seed", request->seed, "simulation seed (scenarios only)")
+      ->each([request](const std::string&) { request->seed_given = true; });
+  cmd->add_option("--set", request->sets, "override KEY=VALUE (scenario keys, or algo.NAME.FIELD)");
+  cmd->add_option("-o,--output", request->output_dir, "output folder")->required();
+  cmd->add_flag("--no-figures", [request](std::int64_t) { request->figures = false; }, "skip figures");
+  cmd->add_flag("-q,--quiet", request->quiet, "no progress on stderr");
+  cmd->callback([request] {
+    if (request->algorithms.empty()) request->algorithms = {"odometry"};
+    const auto doc = RunAndWrite(*request);
+    int bad = 0;
+    for (const auto& [name, m] : doc["algorithms"].items()) {
+      const std::string status = m.value("status", "?");
+      if (status == "failed") ++bad;
+      std::cout << name << ": " << status;
+      if (m.contains("ate_rmse_m") && m["ate_rmse_m"].is_number())
+        std::cout << "  ate_rmse_m=" << m["ate_rmse_m"].get<double>();
+      if (m.contains("reason")) std::cout << "  (" << m["reason"].get<std::string>() << ")";
+      std::cout << "\n";
+    }
+    std::cout << "wrote " << request->output_dir << "/metrics.json\n";
+    if (bad > 0 && bad == static_cast<int>(doc["algorithms"].size())) throw CommandExit{3};
+  });
+}
+
+}  // namespace slambox

@@ -1,0 +1,97 @@
+// `slambox scenarios`, `slambox scenario show`, `slambox algorithms [--params NAME]`:
+// what can be simulated and what can be run, printed as plain text on stdout.
+#include <algorithm>
+#include <array>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "app/registry.hpp"
+#include "sim/scenario.hpp"
+
+namespace slambox {
+namespace {
+
+std::string Needs(const SensorNeeds& needs) {
+  std::string out;
+  auto add = [&](bool on, const char* name) {
+    if (on) out += (out.empty() ? "" : "+") + std::string(name);
+  };
+  add(needs.odometry, "odometry");
+  add(needs.lidar, "lidar");
+  add(needs.landmarks, "landmarks");
+  return out.empty() ? "-" : out;
+}
+
+void PrintScenarios() {
+  const std::vector<BuiltinScenario> all = BuiltinScenarios();
+  std::size_t width = 0;
+  for (const auto& s : all) width = std::max(width, s.name.size());
+  for (const auto& s : all) std::cout << std::left << std::setw(static_cast<int>(width) + 2) << s.name << s.description << "\n";
+}
+
+void PrintAlgorithms() {
+  std::size_t name_w = 0, needs_w = 0;
+  for (const auto& m : AllModules()) {
+    name_w = std::max(name_w, m.name.size());
+    needs_w = std::max(needs_w, Needs(m.needs).size());
+  }
+  for (const auto& m : AllModules())
+    std::cout << std::left << std::setw(static_cast<int>(name_w) + 2) << m.name
+              << std::setw(static_cast<int>(needs_w) + 2) << Needs(m.needs) << m.description << "\n";
+}
+
+void PrintParams(const std::string& module_name) {
+  const ModuleInfo& module = FindModule(module_name);  // InputError listing the names
+  const std::vector<ParamInfo> params = module.params();
+  if (params.empty()) {
+    std::cout << module.name << " has no parameters\n";
+    return;
+  }
+  std::vector<std::array<std::string, 5>> rows = {{"name", "type", "default", "unit", "meaning"}};
+  for (const auto& p : params) rows.push_back({"algo." + module.name + "." + p.name, p.type, p.default_value, p.unit, p.meaning});
+  std::array<std::size_t, 4> w{};
+  for (const auto& r : rows)
+    for (std::size_t c = 0; c < 4; ++c) w[c] = std::max(w[c], r[c].size());
+  for (const auto& r : rows) {
+    for (std::size_t c = 0; c < 4; ++c) std::cout << std::left << std::setw(static_cast<int>(w[c]) + 2) << r[c];
+    std::cout << r[4] << "\n";
+  }
+}
+
+}  // namespace
+
+void AddScenarioCommands(CLI::App& app) {
+  CLI::App* scenarios = app.add_subcommand("scenarios", "List the built-in scenarios, one line each: name, what it tests");
+  scenarios->callback(PrintScenarios);
+
+  CLI::App* scenario = app.add_subcommand("scenario", "Inspect a scenario");
+  scenario->require_subcommand(1);
+  CLI::App* show = scenario->add_subcommand(
+      "show", "Print a scenario (built-in name or YAML file) with every default filled in and overrides applied");
+  auto target = std::make_shared<std::string>();
+  auto overrides = std::make_shared<std::vector<std::string>>();
+  show->add_option("scenario", *target, "built-in scenario name (see `slambox scenarios`) or a .yaml file")->required();
+  show->add_option("--set", *overrides, "override a scenario key, e.g. --set robot.laps=3 (repeatable)")
+      ->type_name("KEY=VALUE");
+  show->callback([target, overrides] { std::cout << ScenarioToYaml(LoadScenario(*target, *overrides)); });
+
+  CLI::App* algorithms = app.add_subcommand(
+      "algorithms", "List the registered SLAM modules (name, sensors needed, description), or one module's parameters");
+  auto params_of = std::make_shared<std::string>();
+  algorithms->add_option("--params", *params_of,
+                         "list the parameters of module NAME (settable as --set algo.NAME.FIELD=VALUE) with "
+                         "type, default, unit and meaning")
+      ->type_name("NAME");
+  algorithms->callback([params_of] {
+    if (params_of->empty())
+      PrintAlgorithms();
+    else
+      PrintParams(*params_of);
+  });
+}
+
+}  // namespace slambox

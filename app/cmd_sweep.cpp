@@ -1,0 +1,184 @@
+// `slambox sweep SWEEP.yaml -o DIR [-j N] [--resume] [--shard I/N] [--list] [--emit-slurm]
+//  [--check BASELINE.csv --tolerance X]` and `slambox sweep --merge DIR`.
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <fstream>
+#include <set>
+#include <thread>
+
+#include "app/commands.hpp"
+#include "app/registry.hpp"
+#include "app/run.hpp"
+#include "app/sweep_exec.hpp"
+#include "app/sweep_slurm.hpp"
+#include "app/sweep_summary.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "render/figures_sweep.hpp"
+#include "render/report.hpp"
+#include "sim/scenario.hpp"
+
+namespace slambox {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct SweepArgs {
+  std::string sweep_file, out_dir, shard, check, merge_dir, worker_exe, partition, time_limit = "04:00:00";
+  int jobs = 0, shards = 8, cpus_per_task = 2;
+  double tolerance = 0.10, tolerance_abs = 0.0, timeout_s = 0.0;
+  bool resume = false, list = false, emit_slurm = false, figures = true;
+};
+
+void ParseShard(const std::string& text, std::size_t& index, std::size_t& count) {
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    index = std::stoul(text.substr(0, slash));
+    count = std::stoul(text.substr(slash + 1));
+  } catch (const std::exception&) {
+    count = 0;
+  }
+  if (count == 0 || index >= count)
+    throw InputError("--shard " + text, 0, "expected I/N with 0 <= I < N", "write e.g. --shard 0/4 (Slurm: $SLURM_ARRAY_TASK_ID/N)");
+}
+
+// Loads every distinct scenario variant and builds every module with its parameters once,
+// so a typo fails the sweep before any run starts instead of failing every run.
+void Validate(const SweepSpec& spec, const std::vector<SweepRun>& runs) {
+  std::set<std::string> seen;
+  for (const auto& run : runs) {
+    std::string key = run.scenario;
+    for (const auto& s : run.sets) key += "\n" + s;
+    if (!seen.insert(key).second) continue;
+    const Overrides o = SplitOverrides(run.sets);
+    const Scenario scenario = LoadScenario(run.scenario, o.scenario);
+    const auto names = ResolveAlgorithms(spec.algorithms, scenario.sensors);
+    for (const auto& [name, params] : o.algo) FindModule(name).create(params);
+    (void)names;
+  }
+}
+
+void WriteManifest(const std::string& dir, const SweepSpec& spec) {
+  nlohmann::json grid = nlohmann::json::object();
+  for (const auto& [k, v] : spec.grid) grid[k] = v;
+  const nlohmann::json manifest = {
+      {"scenarios", spec.scenarios}, {"algorithms", spec.algorithms}, {"seeds", spec.seeds}, {"grid", grid}};
+  WriteFileAtomic(dir + "/sweep.json", manifest.dump(1) + "\n");
+}
+
+int Check(const SweepArgs& a, const std::string& dir) {
+  const auto regressions = CheckBaseline(dir + "/results.csv", a.check, a.tolerance, a.tolerance_abs);
+  if (regressions.empty()) {
+    std::cout << "check: no cell got worse than " << a.check << " beyond tolerance " << a.tolerance << "\n";
+    return 0;
+  }
+  std::cerr << "check: " << regressions.size() << " regression(s) against " << a.check << ":\n";
+  for (const auto& r : regressions) {
+    std::cerr << "  " << r.cell << "  " << r.metric << ": baseline " << r.baseline_mean << " -> ";
+    if (std::isnan(r.current_mean)) std::cerr << "missing\n";
+    else std::cerr << r.current_mean << " (+" << 100.0 * (r.current_mean / r.baseline_mean - 1.0) << "%)\n";
+  }
+  return 4;
+}
+
+void Finish(const SweepArgs& a, const std::string& dir, const SweepSpec& spec, const std::vector<SweepRun>& runs) {
+  WriteSweepSummary(dir, spec, runs);
+  if (a.figures) {
+    RenderSweepFigures(dir);
+    WriteReport(dir);
+  }
+  std::cout << "wrote " << dir << "/results.csv, summary.md" << (a.figures ? ", report.html" : "") << "\n";
+  if (!a.check.empty())
+    if (const int code = Check(a, dir)) throw CommandExit{code};
+}
+
+void Sweep(const SweepArgs& a) {
+  if (!a.merge_dir.empty()) {  // rebuild the summary from the shards' run results
+    const SweepSpec spec = LoadSweepSpec(a.merge_dir + "/sweep.yaml");
+    Finish(a, a.merge_dir, spec, ExpandSweep(spec));
+    return;
+  }
+  if (a.sweep_file.empty()) throw InputError("sweep", 0, "no sweep file given", "slambox sweep SWEEP.yaml -o DIR (or --merge DIR)");
+  SweepSpec spec = LoadSweepSpec(a.sweep_file);
+  if (a.timeout_s > 0) spec.timeout_s = a.timeout_s;
+  const std::vector<SweepRun> all = ExpandSweep(spec);
+  if (a.list) {
+    for (const auto& r : all) {
+      std::cout << r.id << "  " << r.scenario << "  seed=" << r.seed;
+      for (const auto& s : r.sets) std::cout << "  " << s;
+      std::cout << "\n";
+    }
+    return;
+  }
+  if (a.out_dir.empty()) throw InputError("sweep", 0, "no output folder", "add -o DIR");
+  const std::string exe = fs::read_symlink("/proc/self/exe").string();
+  if (a.emit_slurm) {
+    fs::create_directories(a.out_dir + "/slurm");
+    std::cout << SlurmArrayScript({fs::absolute(a.sweep_file).string(), fs::absolute(a.out_dir).string(), exe,
+                                   a.shards, a.cpus_per_task, a.time_limit, a.partition});
+    return;
+  }
+  Validate(spec, all);
+  std::vector<SweepRun> mine = all;
+  if (!a.shard.empty()) {
+    std::size_t index = 0, count = 0;
+    ParseShard(a.shard, index, count);
+    mine.clear();
+    for (const auto& r : all)
+      if (r.index % count == index) mine.push_back(r);
+  }
+  if (!a.resume)
+    for (const auto& r : mine)
+      if (RunComplete(a.out_dir, r))
+        throw InputError(a.out_dir, 0, "the folder already holds results of this sweep",
+                         "add --resume to continue it, or give a new -o folder");
+  fs::create_directories(a.out_dir);
+  WriteFileAtomic(a.out_dir + "/sweep.yaml", [&](std::ostream& out) { out << std::ifstream(a.sweep_file).rdbuf(); });
+  WriteManifest(a.out_dir, spec);
+  ExecOptions o;
+  o.out_dir = a.out_dir;
+  o.worker_exe = a.worker_exe.empty() ? exe : a.worker_exe;
+  o.algorithms = spec.algorithms;
+  o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.timeout_s = spec.timeout_s;
+  o.progress_bar = isatty(STDERR_FILENO);
+  const ExecSummary s = ExecuteRuns(mine, o);
+  std::cout << "sweep: " << s.executed << " runs executed, " << s.skipped << " already done, " << s.failed << " failed\n";
+  if (a.shard.empty()) Finish(a, a.out_dir, spec, all);
+  else std::cout << "shard done; when every shard is: slambox sweep --merge " << a.out_dir << "\n";
+}
+
+}  // namespace
+
+void AddSweepCommand(CLI::App& app) {
+  auto a = std::make_shared<SweepArgs>();
+  auto* cmd = app.add_subcommand("sweep", "run scenarios x algorithms x parameter grid x seeds in parallel");
+  cmd->add_option("sweep_file", a->sweep_file, "sweep YAML (scenarios, algorithms, seeds, grid)");
+  cmd->add_option("-o,--output", a->out_dir, "output folder");
+  cmd->add_option("-j,--jobs", a->jobs, "worker processes (default: cores)");
+  cmd->add_flag("--resume", a->resume, "skip runs that already have a result");
+  cmd->add_option("--shard", a->shard, "run only shard I of N (I/N, 0-based), e.g. $SLURM_ARRAY_TASK_ID/8");
+  cmd->add_flag("--list", a->list, "print the runs (id, scenario, seed, overrides) and exit");
+  cmd->add_option("--merge", a->merge_dir, "build results and summary in DIR from its shards' runs");
+  cmd->add_flag("--emit-slurm", a->emit_slurm, "print an sbatch script for a job array of shards");
+  cmd->add_option("--shards", a->shards, "array tasks for --emit-slurm")->check(CLI::PositiveNumber);
+  cmd->add_option("--cpus-per-task", a->cpus_per_task, "CPUs per array task for --emit-slurm")->check(CLI::PositiveNumber);
+  cmd->add_option("--time", a->time_limit, "time limit per array task for --emit-slurm");
+  cmd->add_option("--partition", a->partition, "Slurm partition for --emit-slurm");
+  cmd->add_option("--check", a->check, "baseline results.csv: exit 4 when a cell's mean error got worse");
+  cmd->add_option("--tolerance", a->tolerance, "relative tolerance for --check (0.1 = 10%)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--tolerance-abs", a->tolerance_abs, "absolute tolerance added for --check")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--timeout", a->timeout_s, "seconds before a run is killed and recorded failed (overrides timeout_s)");
+  cmd->add_flag("--no-figures", [a](std::int64_t) { a->figures = false; }, "skip sweep figures and report");
+  cmd->add_option("--worker-exe", a->worker_exe, "program that executes one run (default: this slambox)")
+      ->group("");  // for wrappers and tests
+  cmd->callback([a] { Sweep(*a); });
+}
+
+}  // namespace slambox

@@ -1,0 +1,154 @@
+#include "app/run.hpp"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include "app/registry.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/json_io.hpp"
+#include "core/stream_io.hpp"
+#include "core/tum.hpp"
+#include "core/version.hpp"
+#include "eval/evaluate.hpp"
+#include "render/figures_run.hpp"
+#include "sim/scenario.hpp"
+#include "sim/simulate.hpp"
+
+namespace slambox {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+Overrides SplitOverrides(const std::vector<std::string>& sets) {
+  Overrides out;
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--set " + s, 0, "expected KEY=VALUE", "write e.g. --set sensors.lidar.sigma_range_m=0.05");
+    const std::string key = s.substr(0, eq);
+    if (key.rfind("algo.", 0) == 0) {
+      const auto dot = key.find('.', 5);
+      if (dot == std::string::npos || dot == 5 || dot + 1 == key.size())
+        throw InputError("--set " + s, 0, "an algorithm parameter needs algo.NAME.FIELD",
+                         "write e.g. --set algo.fastslam2.particles=200");
+      out.algo[key.substr(5, dot - 5)][key.substr(dot + 1)] = s.substr(eq + 1);
+    } else {
+      out.scenario.push_back(s);
+    }
+  }
+  return out;
+}
+
+Stream LoadOrSimulate(const std::string& input, std::uint64_t seed, bool seed_given,
+                      const std::vector<std::string>& scenario_overrides) {
+  if (fs::is_regular_file(input) && IsStreamFile(input)) {
+    if (seed_given || !scenario_overrides.empty())
+      throw InputError(input, 0, "--seed and scenario --set do not apply to a recorded stream",
+                       "drop them, or give the scenario instead of the stream");
+    return ReadStream(input);
+  }
+  return Simulate(LoadScenario(input, scenario_overrides), seed);
+}
+
+std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors) {
+  std::vector<std::string> names;
+  for (const auto& r : requested) {
+    if (r == "all") {
+      for (const auto& m : AllModules())
+        if (SensorsAllow(m, sensors)) names.push_back(m.name);
+      continue;
+    }
+    const ModuleInfo& m = FindModule(r);
+    if (!SensorsAllow(m, sensors))
+      throw InputError("--algo " + r, 0, "the stream lacks a sensor '" + r + "' needs",
+                       "add the sensor to the scenario or pick another algorithm (see `slambox algorithms`)");
+    names.push_back(r);
+  }
+  if (names.empty()) throw InputError("--algo", 0, "no algorithm to run", "give --algo NAME[,NAME...] or all");
+  return names;
+}
+
+namespace {
+
+double PeakRssMb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;  // Linux reports KiB
+}
+
+std::vector<StampedPose> Poses(const Estimate& e) {
+  std::vector<StampedPose> out;
+  out.reserve(e.trajectory.size());
+  for (const auto& p : e.trajectory) out.push_back({p.t_s, p.pose});
+  return out;
+}
+
+void WriteJson(const fs::path& path, const json& j) { WriteFileAtomic(path.string(), j.dump(1) + "\n"); }
+
+}  // namespace
+
+json RunAndWrite(const RunRequest& request) {
+  const Overrides overrides = SplitOverrides(request.sets);
+  const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
+  const std::vector<std::string> names = ResolveAlgorithms(request.algorithms, stream.header.sensors);
+  for (const auto& [name, fields] : overrides.algo) {
+    FindModule(name);  // unknown module in --set is an error even when not run
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      throw InputError("--set algo." + name, 0, "'" + name + "' is not among the algorithms run",
+                       "add it to --algo or drop the --set");
+  }
+  // Build every module first: a bad --set fails before any file is written.
+  std::vector<std::unique_ptr<SlamModule>> modules;
+  for (const auto& name : names)
+    modules.push_back(FindModule(name).create(overrides.algo.count(name) ? overrides.algo.at(name) : ParamOverrides{}));
+
+  const bool progress = !request.quiet && isatty(STDERR_FILENO);
+  const fs::path dir(request.output_dir);
+  fs::create_directories(dir);
+  const GroundTruth gt{stream.groundtruth, stream.header.world};
+  json doc;
+  doc["slambox_version"] = kVersion;
+  doc["scenario"] = stream.header.scenario_name;
+  doc["seed"] = stream.header.seed;
+  doc["duration_s"] = stream.header.duration_s;
+  doc["distance_m"] = PathLength(stream.groundtruth);
+  doc["algorithms"] = json::object();
+  WriteTum((dir / "groundtruth.tum").string(), stream.groundtruth);
+  WriteJson(dir / "world.json", {{"scenario", stream.header.scenario_name},
+                                 {"seed", stream.header.seed},
+                                 {"duration_s", stream.header.duration_s},
+                                 {"world", ToJson(stream.header.world)}});
+
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
+    if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
+    json metrics;
+    try {
+      const Estimate estimate = Replay(*modules[i], stream);
+      const Evaluation evaluation = EvaluateEstimate(gt, estimate);
+      metrics = evaluation.metrics;
+      WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
+      WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));
+      WriteJson(dir / "series" / (name + ".json"), evaluation.series);
+    } catch (const std::exception& e) {  // a failing module never takes the others down
+      metrics = {{"status", "failed"}, {"reason", e.what()}};
+    }
+    modules[i].reset();
+    doc["algorithms"][name] = metrics;
+    if (progress) std::cerr << " " << metrics.value("status", "?") << "\n";
+  }
+  doc["peak_rss_mb"] = PeakRssMb();
+  WriteJson(dir / "metrics.json", doc);
+  if (request.figures) RenderRunFigures(dir.string());
+  return doc;
+}
+
+}  // namespace slambox

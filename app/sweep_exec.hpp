@@ -1,0 +1,35 @@
+#pragma once
+// Executes sweep runs in worker processes. Each run is `slambox run ... -o DIR/runs/<id>`
+// in its own process group: a crash or a hang (past the timeout) is recorded as
+// DIR/runs/<id>/failed.json and the sweep goes on. A run is complete when its
+// metrics.json (written last, atomically, by `slambox run`) or failed.json exists, so a
+// sweep killed at any moment resumes where it stopped.
+#include <string>
+#include <vector>
+
+#include "app/sweep_spec.hpp"
+
+namespace slambox {
+
+struct ExecOptions {
+  std::string out_dir;
+  std::string worker_exe;  ///< the slambox binary (or a wrapper) that executes one run
+  std::vector<std::string> algorithms;
+  int jobs = 1;
+  double timeout_s = 1800.0;
+  bool progress_bar = false;  ///< a redrawn bar on a terminal; plain log lines otherwise
+  bool quiet = false;
+};
+
+struct ExecSummary {
+  int executed = 0;
+  int skipped = 0;  ///< already complete (resume)
+  int failed = 0;
+};
+
+std::string RunDir(const std::string& out_dir, const SweepRun& run);
+bool RunComplete(const std::string& out_dir, const SweepRun& run);
+
+ExecSummary ExecuteRuns(const std::vector<SweepRun>& runs, const ExecOptions& options);
+
+}  // namespace slambox

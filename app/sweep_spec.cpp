@@ -1,0 +1,148 @@
+#include "app/sweep_spec.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdio>
+#include <set>
+
+#include "core/error.hpp"
+#include "core/version.hpp"
+
+namespace slambox {
+
+namespace {
+
+int Line(const YAML::Node& n) { return n.Mark().line + 1; }
+
+std::vector<std::string> StringList(const YAML::Node& n, const std::string& file, const std::string& key) {
+  if (!n.IsSequence() || n.size() == 0)
+    throw InputError(file, Line(n), "'" + key + "' must be a non-empty list", "write e.g. " + key + ": [a, b]");
+  std::vector<std::string> out;
+  for (const auto& item : n) {
+    if (!item.IsScalar()) throw InputError(file, Line(item), "'" + key + "' items must be names", "write plain names");
+    out.push_back(item.Scalar());
+  }
+  return out;
+}
+
+std::string ScalarText(const YAML::Node& n, const std::string& file, const std::string& key) {
+  if (n.IsScalar()) return n.Scalar();
+  YAML::Emitter e;
+  e << YAML::Flow << n;  // lists and maps as flow YAML, parsed back by the scenario loader
+  if (!e.good()) throw InputError(file, Line(n), "cannot use the value of '" + key + "'", "give a scalar or a list");
+  return e.c_str();
+}
+
+}  // namespace
+
+SweepSpec LoadSweepSpec(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(path, 0, "cannot open the sweep file", "check the path");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(path, e.mark.line + 1, "not valid YAML: " + e.msg, "fix the YAML syntax");
+  }
+  if (!root.IsMap()) throw InputError(path, 1, "a sweep file is a YAML map", "see DESIGN.md: scenarios, algorithms, seeds, grid");
+  SweepSpec spec;
+  spec.source = path;
+  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s"};
+  for (const auto& kv : root) {
+    const std::string key = kv.first.Scalar();
+    if (!known.count(key))
+      throw InputError(path, Line(kv.first), "unknown key '" + key + "'",
+                       "use scenarios, algorithms, seeds, grid, set, timeout_s");
+  }
+  for (const char* required : {"scenarios", "algorithms", "seeds"})
+    if (!root[required]) throw InputError(path, 1, std::string("missing '") + required + "'", std::string("add ") + required + ":");
+  spec.scenarios = StringList(root["scenarios"], path, "scenarios");
+  spec.algorithms = StringList(root["algorithms"], path, "algorithms");
+  const YAML::Node seeds = root["seeds"];
+  try {
+    if (seeds.IsScalar()) {
+      const long n = seeds.as<long>();
+      if (n < 1 || n > 100000) throw InputError(path, Line(seeds), "seeds must be 1..100000", "write e.g. seeds: 10");
+      for (long s = 0; s < n; ++s) spec.seeds.push_back(static_cast<std::uint64_t>(s));
+    } else if (seeds.IsSequence() && seeds.size() > 0) {
+      for (const auto& s : seeds) spec.seeds.push_back(s.as<std::uint64_t>());
+    } else {
+      throw InputError(path, Line(seeds), "seeds must be a count or a non-empty list", "write seeds: 10 or seeds: [0, 3]");
+    }
+  } catch (const YAML::BadConversion&) {
+    throw InputError(path, Line(seeds), "seeds must be non-negative integers", "write seeds: 10 or seeds: [0, 3]");
+  }
+  if (std::set<std::uint64_t>(spec.seeds.begin(), spec.seeds.end()).size() != spec.seeds.size())
+    throw InputError(path, Line(seeds), "a seed is listed twice", "list each seed once");
+  if (const YAML::Node grid = root["grid"]) {
+    if (!grid.IsMap()) throw InputError(path, Line(grid), "'grid' must map keys to lists", "write grid: {robot.laps: [1, 2]}");
+    for (const auto& kv : grid) {
+      const std::string key = kv.first.Scalar();
+      if (!kv.second.IsSequence() || kv.second.size() == 0)
+        throw InputError(path, Line(kv.second), "grid key '" + key + "' needs a non-empty list of values",
+                         "write " + key + ": [v1, v2]");
+      std::vector<std::string> values;
+      for (const auto& v : kv.second) values.push_back(ScalarText(v, path, key));
+      spec.grid.emplace_back(key, values);
+    }
+  }
+  if (const YAML::Node set = root["set"]) {
+    if (!set.IsMap()) throw InputError(path, Line(set), "'set' must be a map of overrides", "write set: {robot.laps: 1}");
+    for (const auto& kv : set) spec.fixed.emplace_back(kv.first.Scalar(), ScalarText(kv.second, path, kv.first.Scalar()));
+  }
+  if (const YAML::Node t = root["timeout_s"]) {
+    try {
+      spec.timeout_s = t.as<double>();
+    } catch (const YAML::BadConversion&) {
+      spec.timeout_s = -1;
+    }
+    if (!(spec.timeout_s > 0)) throw InputError(path, Line(t), "timeout_s must be a positive number", "write timeout_s: 600");
+  }
+  return spec;
+}
+
+std::string RunId(const std::string& scenario, const std::vector<std::string>& sets, std::uint64_t seed) {
+  std::string canonical = std::string("slambox ") + kVersion + "\nscenario " + scenario + "\nseed " +
+                          std::to_string(seed) + "\n";
+  for (const auto& s : sets) canonical += "set " + s + "\n";
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a 64
+  for (unsigned char c : canonical) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::vector<SweepRun> ExpandSweep(const SweepSpec& spec) {
+  std::size_t points = 1;
+  for (const auto& [key, values] : spec.grid) points *= values.size();
+  std::vector<SweepRun> runs;
+  for (const auto& scenario : spec.scenarios) {
+    for (std::size_t p = 0; p < points; ++p) {
+      // Mixed-radix digits of p, last grid key fastest.
+      std::vector<std::pair<std::string, std::string>> values(spec.grid.size());
+      std::size_t rest = p;
+      for (std::size_t k = spec.grid.size(); k-- > 0;) {
+        const auto& [key, options] = spec.grid[k];
+        values[k] = {key, options[rest % options.size()]};
+        rest /= options.size();
+      }
+      for (std::uint64_t seed : spec.seeds) {
+        SweepRun run;
+        run.index = runs.size();
+        run.scenario = scenario;
+        run.seed = seed;
+        run.grid_values = values;
+        for (const auto& [k, v] : spec.fixed) run.sets.push_back(k + "=" + v);
+        for (const auto& [k, v] : values) run.sets.push_back(k + "=" + v);
+        run.id = RunId(scenario, run.sets, seed);
+        runs.push_back(std::move(run));
+      }
+    }
+  }
+  return runs;
+}
+
+}  // namespace slambox

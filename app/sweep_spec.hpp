@@ -1,0 +1,45 @@
+#pragma once
+// A sweep file (DESIGN.md, "Output of slambox sweep") and its expansion into runs.
+//   scenarios: [loop, tunnel]          # built-in names or scenario files
+//   algorithms: [icp-poseslam, odometry] # or [all]
+//   seeds: 10                          # seeds 0..9, or a list [0, 4, 7]
+//   grid:                              # cartesian product of overrides
+//     sensors.lidar.sigma_range_m: [0.01, 0.05]
+//   set: {robot.laps: 1}               # optional: fixed overrides for every run
+//   timeout_s: 600                     # optional: a run taking longer is killed, recorded failed
+// A run = one scenario x one grid point x one seed; it simulates its stream once and
+// replays it to every algorithm.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace slambox {
+
+struct SweepSpec {
+  std::string source;  ///< the sweep file, for messages
+  std::vector<std::string> scenarios;
+  std::vector<std::string> algorithms;
+  std::vector<std::uint64_t> seeds;
+  std::vector<std::pair<std::string, std::vector<std::string>>> grid;  ///< key -> values (YAML text), file order
+  std::vector<std::pair<std::string, std::string>> fixed;              ///< `set:` key -> value
+  double timeout_s = 1800.0;
+};
+
+struct SweepRun {
+  std::size_t index = 0;  ///< position in the expansion (shards are index % N)
+  std::string id;         ///< 16 hex digits: hash of scenario, overrides, seed, slambox version
+  std::string scenario;
+  std::uint64_t seed = 0;
+  std::vector<std::pair<std::string, std::string>> grid_values;  ///< this run's value of each grid key
+  std::vector<std::string> sets;  ///< every "key=value" override (fixed then grid)
+};
+
+/// Parses and validates; throws InputError with file, line and fix.
+SweepSpec LoadSweepSpec(const std::string& path);
+/// Scenario-major, then grid points (last key varies fastest), then seeds.
+std::vector<SweepRun> ExpandSweep(const SweepSpec& spec);
+/// Stable run id (FNV-1a 64 of the canonical run description and slambox version).
+std::string RunId(const std::string& scenario, const std::vector<std::string>& sets, std::uint64_t seed);
+
+}  // namespace slambox

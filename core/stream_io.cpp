@@ -1,0 +1,240 @@
+#include "core/stream_io.hpp"
+
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/json_io.hpp"
+
+namespace slambox {
+
+namespace {
+constexpr char kMagic[8] = {'S', 'L', 'B', 'X', 'S', 'T', 'R', 'M'};
+enum Tag : std::uint8_t { kOdometry = 1, kLaser = 2, kLandmarks = 3, kGyro = 4, kGroundTruth = 5, kEnd = 255 };
+const char* kRecreate = "re-create it with `slambox simulate SCENARIO -o FILE`";
+
+std::uint64_t Fnv1a(const std::string& bytes, size_t n) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(bytes[i])) * 0x100000001b3ull;
+  return h;
+}
+
+struct Writer {
+  std::string out;
+  void U8(std::uint8_t v) { out.push_back(static_cast<char>(v)); }
+  void U32(std::uint32_t v) { for (int i = 0; i < 4; ++i) U8(static_cast<std::uint8_t>(v >> (8 * i))); }
+  void U64(std::uint64_t v) { for (int i = 0; i < 8; ++i) U8(static_cast<std::uint8_t>(v >> (8 * i))); }
+  void F64(double v) { U64(std::bit_cast<std::uint64_t>(v)); }
+  void Pose(double t, const SE2& p) { F64(t); F64(p.x); F64(p.y); F64(p.theta); }
+};
+
+struct Reader {
+  const std::string& in;
+  const std::string& name;
+  size_t pos = 0;
+  void Need(size_t n) const {
+    if (in.size() - pos < n)
+      throw InputError(name, 0,
+                       "truncated stream file: needs " + std::to_string(n) + " more bytes at byte offset " +
+                           std::to_string(pos) + " but the file ends at " + std::to_string(in.size()),
+                       kRecreate);
+  }
+  std::uint8_t U8() { Need(1); return static_cast<std::uint8_t>(in[pos++]); }
+  std::uint32_t U32() {
+    Need(4);
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(in[pos++])) << (8 * i);
+    return v;
+  }
+  std::uint64_t U64() {
+    Need(8);
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(in[pos++])) << (8 * i);
+    return v;
+  }
+  double F64() { return std::bit_cast<double>(U64()); }
+  SE2 Pose() {
+    SE2 p;
+    p.x = F64();
+    p.y = F64();
+    p.theta = F64();
+    return p;
+  }
+  [[noreturn]] void Corrupt(const std::string& what, size_t at) const {
+    throw InputError(name, 0, "corrupt stream file: " + what + " at byte offset " + std::to_string(at), kRecreate);
+  }
+};
+
+nlohmann::json HeaderJson(const StreamHeader& h) {
+  return {{"slambox_version", h.slambox_version}, {"scenario_name", h.scenario_name},
+          {"scenario_yaml", h.scenario_yaml},     {"seed", h.seed},
+          {"dt_s", h.dt_s},                       {"duration_s", h.duration_s},
+          {"start_pose", ToJson(h.start_pose)},   {"sensors", ToJson(h.sensors)},
+          {"world", ToJson(h.world)}};
+}
+
+StreamHeader HeaderFromJson(const nlohmann::json& j) {
+  StreamHeader h;
+  h.slambox_version = j.at("slambox_version").get<std::string>();
+  h.scenario_name = j.at("scenario_name").get<std::string>();
+  h.scenario_yaml = j.at("scenario_yaml").get<std::string>();
+  h.seed = j.at("seed").get<std::uint64_t>();
+  h.dt_s = j.at("dt_s").get<double>();
+  h.duration_s = j.at("duration_s").get<double>();
+  h.start_pose = SE2FromJson(j.at("start_pose"));
+  h.sensors = SensorSuiteFromJson(j.at("sensors"));
+  h.world = WorldFromJson(j.at("world"));
+  return h;
+}
+
+void WriteEvent(Writer& w, const SensorEvent& event) {
+  std::visit(
+      [&](const auto& e) {
+        using E = std::decay_t<decltype(e)>;
+        if constexpr (std::is_same_v<E, OdometryEvent>) {
+          w.U8(kOdometry);
+          w.Pose(e.t_s, e.delta);
+        } else if constexpr (std::is_same_v<E, LaserScanEvent>) {
+          w.U8(kLaser);
+          for (double v : {e.t_s, e.angle_min_rad, e.angle_increment_rad, e.range_min_m, e.range_max_m}) w.F64(v);
+          w.U32(static_cast<std::uint32_t>(e.ranges_m.size()));
+          for (double r : e.ranges_m) w.F64(r);
+          for (size_t i = 0; i < e.ranges_m.size(); ++i) w.U8(i < e.valid.size() ? e.valid[i] : 0);
+        } else if constexpr (std::is_same_v<E, LandmarkEvent>) {
+          w.U8(kLandmarks);
+          w.F64(e.t_s);
+          w.U32(static_cast<std::uint32_t>(e.observations.size()));
+          for (const auto& o : e.observations) {
+            w.F64(o.range_m);
+            w.F64(o.bearing_rad);
+            w.U32(static_cast<std::uint32_t>(o.id));
+          }
+        } else {
+          w.U8(kGyro);
+          w.F64(e.t_s);
+          w.F64(e.yaw_rate_rps);
+        }
+      },
+      event);
+}
+}  // namespace
+
+std::string SerializeStream(const Stream& stream) {
+  Writer w;
+  w.out.append(kMagic, sizeof kMagic);
+  w.U32(static_cast<std::uint32_t>(StreamHeader::kFormatVersion));
+  const std::string header = HeaderJson(stream.header).dump();
+  w.U64(header.size());
+  w.out += header;
+  for (const SensorEvent& e : stream.events) WriteEvent(w, e);
+  for (const StampedPose& p : stream.groundtruth) {
+    w.U8(kGroundTruth);
+    w.Pose(p.t_s, p.pose);
+  }
+  w.U8(kEnd);
+  w.U64(stream.events.size());
+  w.U64(stream.groundtruth.size());
+  w.U64(Fnv1a(w.out, w.out.size()));
+  return w.out;
+}
+
+Stream ParseStream(const std::string& bytes, const std::string& name) {
+  Reader r{bytes, name};
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw InputError(name, 0, "not a slambox stream file (no stream magic at byte offset 0)",
+                     "give a file written by `slambox simulate ... -o FILE`, or a scenario name or YAML file");
+  r.pos = sizeof kMagic;
+  const std::uint32_t version = r.U32();
+  if (version != static_cast<std::uint32_t>(StreamHeader::kFormatVersion))
+    throw InputError(name, 0,
+                     "stream format version " + std::to_string(version) + " (byte offset 8); this slambox reads version " +
+                         std::to_string(StreamHeader::kFormatVersion),
+                     std::string(kRecreate) + " using this slambox");
+  Stream s;
+  const size_t header_at = r.pos;
+  const std::uint64_t header_size = r.U64();
+  r.Need(header_size);
+  try {
+    s.header = HeaderFromJson(nlohmann::json::parse(bytes.substr(r.pos, header_size)));
+  } catch (const nlohmann::json::exception& e) {
+    r.Corrupt(std::string("unreadable header (") + e.what() + ")", header_at);
+  }
+  s.header.format_version = static_cast<int>(version);
+  r.pos += header_size;
+  while (true) {
+    const size_t at = r.pos;
+    const std::uint8_t tag = r.U8();
+    if (tag == kEnd) break;
+    const double t = r.F64();
+    if (tag == kOdometry) {
+      s.events.push_back(OdometryEvent{t, r.Pose()});
+    } else if (tag == kGyro) {
+      s.events.push_back(GyroEvent{t, r.F64()});
+    } else if (tag == kGroundTruth) {
+      s.groundtruth.push_back({t, r.Pose()});
+    } else if (tag == kLaser) {
+      LaserScanEvent e;
+      e.t_s = t;
+      e.angle_min_rad = r.F64();
+      e.angle_increment_rad = r.F64();
+      e.range_min_m = r.F64();
+      e.range_max_m = r.F64();
+      const std::uint32_t n = r.U32();
+      r.Need(static_cast<size_t>(n) * 9);
+      e.ranges_m.resize(n);
+      for (auto& v : e.ranges_m) v = r.F64();
+      e.valid.resize(n);
+      for (auto& v : e.valid) v = r.U8();
+      s.events.push_back(std::move(e));
+    } else if (tag == kLandmarks) {
+      LandmarkEvent e;
+      e.t_s = t;
+      const std::uint32_t n = r.U32();
+      r.Need(static_cast<size_t>(n) * 20);
+      e.observations.resize(n);
+      for (auto& o : e.observations) {
+        o.range_m = r.F64();
+        o.bearing_rad = r.F64();
+        o.id = static_cast<std::int32_t>(r.U32());
+      }
+      s.events.push_back(std::move(e));
+    } else {
+      r.Corrupt("unknown record tag " + std::to_string(tag), at);
+    }
+  }
+  const size_t end_at = r.pos - 1;
+  const std::uint64_t num_events = r.U64(), num_gt = r.U64();
+  const size_t checksum_at = r.pos;
+  const std::uint64_t checksum = r.U64();
+  if (num_events != s.events.size() || num_gt != s.groundtruth.size())
+    r.Corrupt("record counts in the end record do not match the records read", end_at);
+  if (checksum != Fnv1a(bytes, checksum_at)) r.Corrupt("checksum mismatch", checksum_at);
+  if (r.pos != bytes.size()) r.Corrupt("unexpected bytes after the end record", r.pos);
+  return s;
+}
+
+void WriteStream(const Stream& stream, const std::string& path) {
+  const std::string bytes = SerializeStream(stream);
+  WriteFileAtomic(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
+}
+
+Stream ReadStream(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open the stream file", "check the path");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return ParseStream(buffer.str(), path);
+}
+
+bool IsStreamFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[sizeof kMagic] = {};
+  if (!in.read(head, sizeof head)) return false;
+  return std::memcmp(head, kMagic, sizeof kMagic) == 0;
+}
+
+}  // namespace slambox

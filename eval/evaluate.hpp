@@ -1,0 +1,53 @@
+#pragma once
+// The evaluator's entry point: one SLAM module's Estimate against ground truth ->
+// one algorithm's entry of metrics.json (DESIGN.md keys plus additions, null where not
+// applicable) and the per-step error series the figure renderer plots.
+// Every metric and its evo equivalent is listed in eval/README.md.
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "core/estimate.hpp"
+#include "core/stream.hpp"
+#include "core/world.hpp"
+#include "eval/divergence.hpp"
+#include "eval/grid_map.hpp"
+#include "eval/kitti_segments.hpp"
+#include "eval/landmark_map.hpp"
+#include "eval/loop_closures.hpp"
+#include "eval/rpe.hpp"
+
+namespace slambox {
+
+struct GroundTruth {
+  std::vector<StampedPose> trajectory;  ///< time-ordered
+  World world;
+};
+
+enum class AlignMode { kNone, kSE2, kOrigin };
+
+struct EvalOptions {
+  double max_time_diff_s = 0.01;   ///< [s] association tolerance (evo --t_max_diff)
+  bool interpolate_groundtruth = false;  ///< linear interpolation instead of nearest stamp
+  /// Alignment applied before ate_* (DESIGN: none; the estimate starts at the true start).
+  /// ate_aligned_* always use SE(2) Umeyama.
+  AlignMode align = AlignMode::kNone;
+  RpeOptions rpe;                  ///< default: delta 1 m, consecutive pairs (evo's rules)
+  KittiOptions kitti;
+  LandmarkMapOptions landmarks;    ///< matching, OSPA cutoff 1 m, order 2
+  GridMapOptions grid;
+  LoopClosureOptions loop_closures;  ///< 0.2 m / 2 deg
+  DivergenceOptions divergence;
+  double nees_confidence = 0.95;   ///< two-sided band for per-step pose NEES (d = 3, one run)
+};
+
+struct Evaluation {
+  nlohmann::json metrics;  ///< one algorithm's entry of metrics.json
+  nlohmann::json series;   ///< t_s, distance_m, ate_m, heading_error_deg, nees, nees_band_95, rpe, landmarks
+};
+
+Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const EvalOptions& options = {});
+
+/// Length of the polyline through the positions [m].
+double PathLength(const std::vector<StampedPose>& trajectory);
+
+}  // namespace slambox

@@ -1,0 +1,65 @@
+#include "eval/statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace slambox {
+
+ErrorStatistics ComputeStatistics(const std::vector<double>& errors) {
+  ErrorStatistics s;
+  s.count = static_cast<int>(errors.size());
+  if (errors.empty()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    s.rmse = s.mean = s.median = s.std = s.min = s.max = s.sse = nan;
+    return s;
+  }
+  const double n = static_cast<double>(errors.size());
+  double sum = 0.0, sse = 0.0;
+  for (double e : errors) {
+    sum += e;
+    sse += e * e;
+  }
+  s.mean = sum / n;
+  s.sse = sse;
+  s.rmse = std::sqrt(sse / n);
+  double var = 0.0;  // two-pass: numerically stable, as numpy.std
+  for (double e : errors) var += (e - s.mean) * (e - s.mean);
+  s.std = std::sqrt(var / n);
+  s.min = *std::min_element(errors.begin(), errors.end());
+  s.max = *std::max_element(errors.begin(), errors.end());
+  s.median = Percentile(errors, 50.0);
+  return s;
+}
+
+double Percentile(std::vector<double> values, double q) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  // numpy "linear": position (n - 1) q / 100 between the two neighbouring order statistics.
+  const double pos = (static_cast<double>(values.size()) - 1.0) * q / 100.0;
+  const auto lo = static_cast<size_t>(std::floor(pos));
+  const size_t hi = std::min(lo + 1, values.size() - 1);
+  const double frac = pos - static_cast<double>(lo);
+  if (frac == 0.0) return values[lo];
+  if (values[lo] == values[hi]) return values[lo];
+  // For the median of an even array (frac = 0.5) this is (a + b) / 2, as numpy.median.
+  if (frac == 0.5) return (values[lo] + values[hi]) / 2.0;
+  return values[lo] + (values[hi] - values[lo]) * frac;
+}
+
+nlohmann::json NumberOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+void AddStatistics(nlohmann::json& out, const std::string& prefix, const std::string& unit,
+                   const std::string& sse_unit, const ErrorStatistics& s) {
+  out[prefix + "_rmse" + unit] = NumberOrNull(s.rmse);
+  out[prefix + "_mean" + unit] = NumberOrNull(s.mean);
+  out[prefix + "_median" + unit] = NumberOrNull(s.median);
+  out[prefix + "_std" + unit] = NumberOrNull(s.std);
+  out[prefix + "_min" + unit] = NumberOrNull(s.min);
+  out[prefix + "_max" + unit] = NumberOrNull(s.max);
+  out[prefix + "_sse" + sse_unit] = NumberOrNull(s.sse);
+}
+
+}  // namespace slambox

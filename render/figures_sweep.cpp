@@ -1,0 +1,288 @@
+// Sweep figures. Each point of a sweep is a metric eval computed per run (results.csv);
+// here they are only summarized for display (quartiles, means, 95% intervals).
+#include "render/figures_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "render/legend.hpp"
+#include "render/sweep_folder.hpp"
+
+namespace slambox::render {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Safe(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+  return s;
+}
+
+std::string MetricLabel(const std::string& m) {
+  if (m == "ate_rmse_m") return "ATE RMSE [m]";
+  if (m == "rpe_trans_rmse_m") return "RPE translation RMSE [m]";
+  if (m == "rpe_rot_rmse_deg") return "RPE rotation RMSE [deg]";
+  if (m == "ate_aligned_rmse_m") return "aligned ATE RMSE [m]";
+  if (m == "anees") return "ANEES";
+  return m;
+}
+
+std::string Short(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::vector<double> Values(const SweepFolder& sw, const std::string& metric, auto&& keep) {
+  std::vector<double> out;
+  for (const auto& r : sw.rows)
+    if (r.status == "ok" && keep(r) && r.metrics.count(metric)) out.push_back(r.metrics.at(metric));
+  return out;
+}
+
+std::vector<std::string> PrimaryMetrics(const SweepFolder& sw) {
+  std::vector<std::string> out;
+  for (const char* m : {"ate_rmse_m", "rpe_trans_rmse_m"})
+    if (std::find(sw.metric_keys.begin(), sw.metric_keys.end(), m) != sw.metric_keys.end()) out.push_back(m);
+  if (out.empty() && !sw.metric_keys.empty()) out.push_back(sw.metric_keys.front());
+  return out;
+}
+
+bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::string& stem) {
+  std::vector<std::vector<GroupStats>> stats(sw.scenarios.size(), std::vector<GroupStats>(sw.algorithms.size()));
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t s = 0; s < sw.scenarios.size(); ++s)
+    for (size_t a = 0; a < sw.algorithms.size(); ++a) {
+      stats[s][a] = Describe(Values(sw, metric, [&](const SweepRow& r) {
+        return r.scenario == sw.scenarios[s] && r.algorithm == sw.algorithms[a];
+      }));
+      const GroupStats& g = stats[s][a];
+      if (g.n == 0) continue;
+      lo = std::min({lo, g.whisker_lo, g.outliers.empty() ? g.whisker_lo : *std::min_element(g.outliers.begin(), g.outliers.end())});
+      hi = std::max({hi, g.whisker_hi, g.outliers.empty() ? g.whisker_hi : *std::max_element(g.outliers.begin(), g.outliers.end())});
+    }
+  if (!(lo <= hi)) return false;
+  Canvas c(1100, 620, 3);
+  const PlotArea area{100, 56, 1100 - 30, 620 - 90};
+  const Axes axes = MakeAxes(area, {0.0, static_cast<double>(sw.scenarios.size())}, NiceRange(std::min(0.0, lo), hi * 1.05));
+  // Horizontal grid only: x is categorical.
+  for (double y : NiceTicks(axes.y0, axes.y1, 5)) {
+    const double py = axes.ToPixel(0, y).y();
+    c.Line({area.left, py}, {area.right, py}, {color::kGrid, 1.0, {}});
+  }
+  const double group_w = (area.right - area.left) / sw.scenarios.size();
+  const double box_w = std::min(60.0, 0.8 * group_w / sw.algorithms.size());
+  std::vector<Eigen::Vector2d> pts;
+  for (size_t s = 0; s < sw.scenarios.size(); ++s) {
+    const double gx = area.left + (s + 0.5) * group_w;
+    c.Text(gx, area.bottom + 12, sw.scenarios[s], {.size_px = 16, .h = HAlign::kCenter, .v = VAlign::kTop});
+    for (size_t a = 0; a < sw.algorithms.size(); ++a) {
+      const GroupStats& g = stats[s][a];
+      if (g.n == 0) continue;
+      const Rgba col = SeriesColor(static_cast<int>(a));
+      const double x = gx + (a - 0.5 * (sw.algorithms.size() - 1)) * box_w * 1.15;
+      auto Y = [&](double v) { return axes.ToPixel(0, v).y(); };
+      const Stroke line{col, 1.6, {}};
+      c.Line({x, Y(g.whisker_lo)}, {x, Y(g.q1)}, line);
+      c.Line({x, Y(g.q3)}, {x, Y(g.whisker_hi)}, line);
+      for (double w : {g.whisker_lo, g.whisker_hi}) c.Line({x - 0.25 * box_w, Y(w)}, {x + 0.25 * box_w, Y(w)}, line);
+      c.FillRect(x - 0.5 * box_w, Y(g.q3), x + 0.5 * box_w, Y(g.q1), col.WithAlpha(0.3));
+      c.Polyline({{x - 0.5 * box_w, Y(g.q3)}, {x + 0.5 * box_w, Y(g.q3)}, {x + 0.5 * box_w, Y(g.q1)},
+                  {x - 0.5 * box_w, Y(g.q1)}, {x - 0.5 * box_w, Y(g.q3)}}, line);
+      c.Line({x - 0.5 * box_w, Y(g.median)}, {x + 0.5 * box_w, Y(g.median)}, {col, 3.0, {}});
+      for (double o : g.outliers) DrawMarker(c, {x, Y(o)}, MarkerShape::kRing, 8.0, col);
+      pts.push_back({x, Y(g.median)});
+      pts.push_back({x, Y(g.whisker_hi)});
+    }
+  }
+  // Frame and y axis (x tick labels are the scenario names drawn above).
+  Axes frame_axes = axes;
+  c.Polyline({{area.left, area.top}, {area.right, area.top}, {area.right, area.bottom}, {area.left, area.bottom}, {area.left, area.top}},
+             {color::kBlack, 1.2, {}});
+  const std::vector<double> yt = NiceTicks(axes.y0, axes.y1, 5);
+  double max_w = 0;
+  for (double y : yt) {
+    const std::string label = FormatTick(y, yt.size() > 1 ? yt[1] - yt[0] : 1.0);
+    max_w = std::max(max_w, TextWidth(label, 15));
+    c.Line({area.left - 6, axes.ToPixel(0, y).y()}, {area.left, axes.ToPixel(0, y).y()}, {color::kBlack, 1.2, {}});
+    c.Text(area.left - 11, axes.ToPixel(0, y).y(), label, {.size_px = 15, .h = HAlign::kRight, .v = VAlign::kMiddle});
+  }
+  c.Text(area.left - 24 - max_w, 0.5 * (area.top + area.bottom), MetricLabel(metric),
+         {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
+  c.Text(0.5 * (area.left + area.right), area.bottom + 48, "scenario", {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kTop});
+  c.Text(0.5 * (area.left + area.right), area.top - 12, MetricLabel(metric) + " per module and scenario (all seeds" +
+         std::string(sw.grid_keys.empty() ? ")" : " and grid cells)"), {.size_px = 20, .h = HAlign::kCenter, .weight = FontWeight::kBold});
+  std::vector<LegendEntry> legend;
+  for (size_t a = 0; a < sw.algorithms.size(); ++a)
+    legend.push_back({.label = sw.algorithms[a], .line = {{}, 0.0, {}}, .patch = SeriesColor(static_cast<int>(a)).WithAlpha(0.5)});
+  DrawLegend(c, frame_axes, legend, pts);
+  SaveFigure(c, stem);
+  return true;
+}
+
+/// Numeric values of a swept key, sorted; empty when any value is not a number.
+std::vector<double> NumericLevels(const SweepFolder& sw, const std::string& key) {
+  std::vector<double> levels;
+  for (const auto& r : sw.rows) {
+    const auto it = r.grid.find(key);
+    if (it == r.grid.end()) continue;
+    char* end = nullptr;
+    const double v = std::strtod(it->second.c_str(), &end);
+    if (end == it->second.c_str() || *end != '\0') return {};
+    if (std::find(levels.begin(), levels.end(), v) == levels.end()) levels.push_back(v);
+  }
+  std::sort(levels.begin(), levels.end());
+  return levels;
+}
+
+bool MatchesLevel(const SweepRow& r, const std::string& key, double level) {
+  const auto it = r.grid.find(key);
+  return it != r.grid.end() && std::strtod(it->second.c_str(), nullptr) == level;
+}
+
+bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::string& metric, const std::string& stem) {
+  const std::vector<double> levels = NumericLevels(sw, key);
+  if (levels.size() < 2) return false;
+  struct Curve { std::string label; Rgba color; std::vector<GroupStats> at; };
+  std::vector<Curve> curves;
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t s = 0; s < sw.scenarios.size(); ++s)
+    for (size_t a = 0; a < sw.algorithms.size(); ++a) {
+      Curve cu{sw.algorithms[a] + (sw.scenarios.size() > 1 ? " / " + sw.scenarios[s] : ""),
+               SeriesColor(static_cast<int>(a + s * sw.algorithms.size())), {}};
+      for (double lv : levels) {
+        cu.at.push_back(Describe(Values(sw, metric, [&](const SweepRow& r) {
+          return r.scenario == sw.scenarios[s] && r.algorithm == sw.algorithms[a] && MatchesLevel(r, key, lv);
+        })));
+        const GroupStats& g = cu.at.back();
+        if (g.n > 0) { lo = std::min(lo, g.mean - g.ci95_half); hi = std::max(hi, g.mean + g.ci95_half); }
+      }
+      curves.push_back(cu);
+    }
+  if (!(lo <= hi)) return false;
+  Canvas c(1100, 620, 3);
+  const double pad = 0.05 * (levels.back() - levels.front());
+  const Axes axes = MakeAxes({100, 56, 1100 - 30, 620 - 80}, {levels.front() - pad, levels.back() + pad},
+                             NiceRange(std::min(0.0, lo), hi * 1.05));
+  DrawGrid(c, axes);
+  std::vector<LegendEntry> legend;
+  std::vector<Eigen::Vector2d> pts;
+  for (size_t k = 0; k < curves.size(); ++k) {
+    const Curve& cu = curves[k];
+    // Dodge overlapping error bars sideways by a few pixels per curve.
+    const double dx = (k - 0.5 * (curves.size() - 1)) * 5.0;
+    std::vector<Eigen::Vector2d> line;
+    for (size_t i = 0; i < levels.size(); ++i) {
+      const GroupStats& g = cu.at[i];
+      if (g.n == 0) continue;
+      const Eigen::Vector2d m = axes.ToPixel(levels[i], g.mean) + Eigen::Vector2d(dx, 0);
+      const Eigen::Vector2d a = axes.ToPixel(levels[i], g.mean - g.ci95_half) + Eigen::Vector2d(dx, 0);
+      const Eigen::Vector2d b = axes.ToPixel(levels[i], g.mean + g.ci95_half) + Eigen::Vector2d(dx, 0);
+      c.Line(a, b, {cu.color, 1.6, {}});
+      c.Line(a - Eigen::Vector2d(5, 0), a + Eigen::Vector2d(5, 0), {cu.color, 1.6, {}});
+      c.Line(b - Eigen::Vector2d(5, 0), b + Eigen::Vector2d(5, 0), {cu.color, 1.6, {}});
+      line.push_back(m);
+      pts.insert(pts.end(), {a, m, b});
+    }
+    c.Polyline(line, {cu.color, 2.2, {}});
+    for (const auto& m : line) DrawMarker(c, m, MarkerShape::kCircle, 9.0, cu.color);
+    legend.push_back({.label = cu.label, .line = {cu.color, 2.2, {}}, .marker = MarkerShape::kCircle, .marker_color = cu.color});
+  }
+  DrawFrame(c, axes, {MetricLabel(metric) + " vs " + key + " (mean, 95% interval)", key, MetricLabel(metric)});
+  DrawLegend(c, axes, legend, pts);
+  SaveFigure(c, stem);
+  return true;
+}
+
+bool HeatmapFigure(const SweepFolder& sw, const std::string& algo, const std::string& metric, const std::string& stem) {
+  if (sw.grid_keys.size() < 2) return false;
+  const std::string kx = sw.grid_keys[0], ky = sw.grid_keys[1];
+  const std::vector<double> xs = NumericLevels(sw, kx), ys = NumericLevels(sw, ky);
+  if (xs.size() < 2 || ys.size() < 2) return false;
+  std::vector<std::vector<double>> mean(ys.size(), std::vector<double>(xs.size(), NAN));
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t j = 0; j < ys.size(); ++j)
+    for (size_t i = 0; i < xs.size(); ++i) {
+      const GroupStats g = Describe(Values(sw, metric, [&](const SweepRow& r) {
+        return r.algorithm == algo && MatchesLevel(r, kx, xs[i]) && MatchesLevel(r, ky, ys[j]);
+      }));
+      if (g.n == 0) continue;
+      mean[j][i] = g.mean;
+      lo = std::min(lo, g.mean);
+      hi = std::max(hi, g.mean);
+    }
+  if (!(lo <= hi)) return false;
+  Canvas c(1000, 700, 3);
+  const PlotArea area{130, 56, 1000 - 200, 700 - 90};
+  const double cw = (area.right - area.left) / xs.size(), ch = (area.bottom - area.top) / ys.size();
+  auto u = [&](double v) { return hi > lo ? (v - lo) / (hi - lo) : 0.5; };
+  char buf[32];
+  for (size_t j = 0; j < ys.size(); ++j)
+    for (size_t i = 0; i < xs.size(); ++i) {
+      const double x0 = area.left + i * cw, y1 = area.bottom - j * ch;
+      const double v = mean[j][i];
+      const Rgba col = std::isfinite(v) ? Viridis(u(v)) : Rgba{0.85, 0.85, 0.85};
+      c.FillRect(x0, y1 - ch, x0 + cw, y1, col);
+      std::snprintf(buf, sizeof buf, std::isfinite(v) ? "%.3g" : "n/a", v);
+      const double lum = 0.2126 * col.r + 0.7152 * col.g + 0.0722 * col.b;
+      c.Text(x0 + 0.5 * cw, y1 - 0.5 * ch, buf, {.size_px = 16, .color = lum > 0.5 ? color::kBlack : color::kWhite,
+                                                .h = HAlign::kCenter, .v = VAlign::kMiddle});
+    }
+  c.Polyline({{area.left, area.top}, {area.right, area.top}, {area.right, area.bottom}, {area.left, area.bottom}, {area.left, area.top}},
+             {color::kBlack, 1.2, {}});
+  for (size_t i = 0; i < xs.size(); ++i)
+    c.Text(area.left + (i + 0.5) * cw, area.bottom + 10, Short(xs[i]),
+           {.size_px = 15, .h = HAlign::kCenter, .v = VAlign::kTop});
+  for (size_t j = 0; j < ys.size(); ++j)
+    c.Text(area.left - 10, area.bottom - (j + 0.5) * ch, Short(ys[j]),
+           {.size_px = 15, .h = HAlign::kRight, .v = VAlign::kMiddle});
+  c.Text(0.5 * (area.left + area.right), area.bottom + 40, kx, {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kTop});
+  c.Text(area.left - 90, 0.5 * (area.top + area.bottom), ky, {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
+  c.Text(0.5 * (area.left + area.right), area.top - 12, MetricLabel(metric) + " of " + algo + " (mean over seeds)",
+         {.size_px = 20, .h = HAlign::kCenter, .weight = FontWeight::kBold});
+  // Colour bar with round ticks.
+  const double bx0 = area.right + 30, bx1 = bx0 + 24;
+  const int steps = 128;
+  for (int k = 0; k < steps; ++k) {
+    const double y0 = area.bottom - (area.bottom - area.top) * k / steps, y1 = area.bottom - (area.bottom - area.top) * (k + 1) / steps;
+    c.FillRect(bx0, y1 - 0.3, bx1, y0 + 0.3, Viridis((k + 0.5) / steps));
+  }
+  c.Polyline({{bx0, area.top}, {bx1, area.top}, {bx1, area.bottom}, {bx0, area.bottom}, {bx0, area.top}}, {color::kBlack, 1.0, {}});
+  const std::vector<double> ticks = NiceTicks(lo, hi > lo ? hi : lo + 1e-9, 5);
+  double tick_w = 0.0;
+  for (double t : ticks) tick_w = std::max(tick_w, TextWidth(FormatTick(t, ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0), 14));
+  c.Text(bx1 + 18 + tick_w, 0.5 * (area.top + area.bottom), MetricLabel(metric),
+         {.size_px = 16, .h = HAlign::kCenter, .v = VAlign::kTop, .vertical = true});
+  for (double t : ticks) {
+    const double y = area.bottom - (area.bottom - area.top) * u(t);
+    c.Line({bx1, y}, {bx1 + 5, y}, {color::kBlack, 1.0, {}});
+    c.Text(bx1 + 9, y, FormatTick(t, ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0), {.size_px = 14, .v = VAlign::kMiddle});
+  }
+  SaveFigure(c, stem);
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::string> RenderSweepFiguresListed(const std::string& sweep_dir) {
+  const SweepFolder sw = ReadSweepFolder(sweep_dir);
+  fs::create_directories(fs::path(sweep_dir) / "figures");
+  std::vector<std::string> written;
+  auto emit = [&](const std::string& name, bool ok) { if (ok) written.push_back("figures/" + name); };
+  auto path = [&](const std::string& name) { return (fs::path(sweep_dir) / "figures" / name).string(); };
+  const std::vector<std::string> metrics = PrimaryMetrics(sw);
+  for (const auto& m : metrics) emit("box_" + m, BoxFigure(sw, m, path("box_" + m)));
+  if (!metrics.empty()) {
+    for (const auto& k : sw.grid_keys) emit("vs_" + Safe(k), VersusFigure(sw, k, metrics[0], path("vs_" + Safe(k))));
+    for (const auto& a : sw.algorithms) emit("heatmap_" + Safe(a), HeatmapFigure(sw, a, metrics[0], path("heatmap_" + Safe(a))));
+  }
+  return written;
+}
+
+void RenderSweepFigures(const std::string& sweep_dir) { RenderSweepFiguresListed(sweep_dir); }
+
+}  // namespace slambox::render

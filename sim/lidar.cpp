@@ -1,0 +1,48 @@
+#include "sim/lidar.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/seeding.hpp"
+
+namespace slambox {
+
+ScanAngles LidarScanAngles(const LidarConfig& c) {
+  const double fov_rad = c.fov_deg * M_PI / 180.0;
+  if (c.fov_deg >= 360.0) return {-M_PI, 2.0 * M_PI / c.beams};
+  if (c.beams < 2) return {0.0, 0.0};
+  return {-fov_rad / 2.0, fov_rad / (c.beams - 1)};
+}
+
+LidarSensor::LidarSensor(const LidarConfig& config, std::uint64_t seed)
+    : config_(config), angles_(LidarScanAngles(config)), rng_(MakeGenerator(seed, NoiseSource::kLidar)) {}
+
+LaserScanEvent LidarSensor::Scan(double t_s, const SE2& T_world_robot, const RayScene& scene) {
+  const LidarConfig& c = config_;
+  LaserScanEvent scan;
+  scan.t_s = t_s;
+  scan.angle_min_rad = angles_.angle_min_rad;
+  scan.angle_increment_rad = angles_.angle_increment_rad;
+  scan.range_min_m = c.range_min_m;
+  scan.range_max_m = c.range_max_m;
+  scan.ranges_m.assign(c.beams, c.range_max_m);
+  scan.valid.assign(c.beams, 0);
+  const Eigen::Vector2d origin = T_world_robot.translation();
+  const double sigma_bearing_rad = c.sigma_bearing_deg * M_PI / 180.0;
+  for (int i = 0; i < c.beams; ++i) {
+    if (c.dropout_prob > 0.0 && uniform_(rng_) < c.dropout_prob) continue;
+    double angle = T_world_robot.theta + angles_.angle_min_rad + i * angles_.angle_increment_rad;
+    if (sigma_bearing_rad > 0.0) angle += sigma_bearing_rad * normal_(rng_);
+    const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
+    const double range = CastRay(scene, origin, dir, c.range_max_m);
+    if (range == kNoHit || range < c.range_min_m) continue;
+    double measured = range;
+    if (c.sigma_range_m > 0.0) measured += c.sigma_range_m * normal_(rng_);
+    // A noisy hit stays a hit: keep it inside the sensor's reporting interval.
+    scan.ranges_m[i] = std::clamp(measured, c.range_min_m, c.range_max_m);
+    scan.valid[i] = 1;
+  }
+  return scan;
+}
+
+}  // namespace slambox

@@ -1,0 +1,101 @@
+#include "sim/ray_caster.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace slambox {
+
+double RaySegmentRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m,
+                       const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  // b2EdgeShape::RayCast: intersect with the segment's line along its normal n = (e.y, -e.x),
+  // then check that the hit lies between the end points (0 <= s <= 1).
+  const Eigen::Vector2d e = b - a;
+  const double rr = e.squaredNorm();
+  if (rr == 0.0) return kNoHit;
+  const Eigen::Vector2d n(e.y(), -e.x());
+  const double denominator = n.dot(d);
+  if (denominator == 0.0) return kNoHit;
+  const double t = n.dot(a - o) / denominator;
+  if (t < 0.0 || t > max_range_m) return kNoHit;
+  const double s = (o + t * d - a).dot(e) / rr;
+  if (s < 0.0 || s > 1.0) return kNoHit;
+  return t;
+}
+
+double RayCircleRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m,
+                      const Eigen::Vector2d& center, double radius_m) {
+  // |o + t d - c|^2 = r^2 with |d| = 1: t = -(c' + sqrt(c'^2 - b)), c' = s.d, b = s.s - r^2.
+  const Eigen::Vector2d s = o - center;
+  const double b = s.squaredNorm() - radius_m * radius_m;
+  const double c = s.dot(d);
+  const double sigma = c * c - b;
+  if (sigma < 0.0) return kNoHit;
+  const double t = -(c + std::sqrt(sigma));
+  return (t >= 0.0 && t <= max_range_m) ? t : kNoHit;
+}
+
+namespace {
+/// b2PolygonShape::RayCast on the box [-h, h] in the box frame: clip the ray against each
+/// face's half-plane; a hit needs an entering face (origin outside).
+double RayBoxRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m, const Eigen::Vector2d& h) {
+  static const double kNormals[4][2] = {{0, -1}, {1, 0}, {0, 1}, {-1, 0}};
+  double lower = 0.0, upper = max_range_m;
+  bool entered = false;
+  for (const auto& nrm : kNormals) {
+    const Eigen::Vector2d n(nrm[0], nrm[1]);
+    const double numerator = std::abs(nrm[0]) * h.x() + std::abs(nrm[1]) * h.y() - n.dot(o);
+    const double denominator = n.dot(d);
+    if (denominator == 0.0) {
+      if (numerator < 0.0) return kNoHit;
+    } else if (denominator < 0.0 && numerator < lower * denominator) {
+      lower = numerator / denominator;
+      entered = true;
+    } else if (denominator > 0.0 && numerator < upper * denominator) {
+      upper = numerator / denominator;
+    }
+    if (upper < lower) return kNoHit;
+  }
+  return entered ? lower : kNoHit;
+}
+}  // namespace
+
+double RayMoversRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m,
+                      const std::vector<MoverShape>& movers) {
+  double best = kNoHit;
+  for (const MoverShape& m : movers) {
+    double t;
+    if (m.is_box) {
+      const SE2 T_mover_world = m.T_world_mover.inverse();
+      const Eigen::Vector2d d_m = T_mover_world.rotation() * d;
+      t = RayBoxRange(T_mover_world * o, d_m, max_range_m, m.box_size_m / 2.0);
+    } else {
+      t = RayCircleRange(o, d, max_range_m, m.T_world_mover.translation(), m.radius_m);
+    }
+    best = std::min(best, t);
+  }
+  return best;
+}
+
+StaticGeometry StaticGeometryOf(const World& world) {
+  StaticGeometry g;
+  g.segments = world.wall_segments;
+  g.circles = world.wall_circles;
+  for (const TrueLandmark& lm : world.landmarks) g.circles.push_back({lm.position, lm.radius_m});
+  return g;
+}
+
+double RayStaticRangeBruteForce(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m,
+                                const StaticGeometry& g) {
+  double best = kNoHit;
+  for (const Segment& s : g.segments) best = std::min(best, RaySegmentRange(o, d, max_range_m, s.a, s.b));
+  for (const Circle& c : g.circles) best = std::min(best, RayCircleRange(o, d, max_range_m, c.center, c.radius_m));
+  return best;
+}
+
+double CastRay(const RayScene& scene, const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m) {
+  const double statics = scene.statics ? scene.statics->Cast(o, d, max_range_m) : kNoHit;
+  if (scene.movers.empty()) return statics;
+  return std::min(statics, RayMoversRange(o, d, std::min(max_range_m, statics), scene.movers));
+}
+
+}  // namespace slambox

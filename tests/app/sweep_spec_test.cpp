@@ -1,0 +1,158 @@
+// Sweep expansion, stable ids, shards, CSV and summary statistics (no processes run here).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "app/csv.hpp"
+#include "app/sweep_spec.hpp"
+#include "app/sweep_summary.hpp"
+#include "core/error.hpp"
+
+namespace slambox {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("slambox_sweep_spec_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+TEST(SweepSpec, ExpandsCartesianProductInStableOrder) {
+  const auto path = WriteTemp("a.yaml",
+                              "scenarios: [loop, tunnel]\nalgorithms: [odometry]\nseeds: 3\n"
+                              "grid:\n  sensors.lidar.sigma_range_m: [0.01, 0.05]\n  robot.laps: [1, 2]\n");
+  const SweepSpec spec = LoadSweepSpec(path);
+  const auto runs = ExpandSweep(spec);
+  ASSERT_EQ(runs.size(), 2u * 2u * 2u * 3u);
+  EXPECT_EQ(runs[0].scenario, "loop");
+  EXPECT_EQ(runs[0].sets, (std::vector<std::string>{"sensors.lidar.sigma_range_m=0.01", "robot.laps=1"}));
+  EXPECT_EQ(runs[3].sets, (std::vector<std::string>{"sensors.lidar.sigma_range_m=0.01", "robot.laps=2"}));  // last key fastest
+  EXPECT_EQ(runs[6].sets[0], "sensors.lidar.sigma_range_m=0.05");
+  EXPECT_EQ(runs[12].scenario, "tunnel");
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    EXPECT_EQ(runs[i].index, i);
+    EXPECT_EQ(runs[i].seed, i % 3);
+    ids.insert(runs[i].id);
+  }
+  EXPECT_EQ(ids.size(), runs.size()) << "run ids must be unique";
+  // Same description => same id, whatever the position in the sweep.
+  EXPECT_EQ(RunId("loop", runs[0].sets, 0), runs[0].id);
+  EXPECT_NE(RunId("loop", runs[0].sets, 1), runs[0].id);
+  EXPECT_EQ(runs[0].id.size(), 16u);
+}
+
+TEST(SweepSpec, SeedListAndFixedSets) {
+  const auto path = WriteTemp("b.yaml", "scenarios: [loop]\nalgorithms: [all]\nseeds: [4, 9]\nset: {robot.laps: 1}\ntimeout_s: 30\n");
+  const SweepSpec spec = LoadSweepSpec(path);
+  const auto runs = ExpandSweep(spec);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[1].seed, 9u);
+  EXPECT_EQ(runs[1].sets, (std::vector<std::string>{"robot.laps=1"}));
+  EXPECT_DOUBLE_EQ(spec.timeout_s, 30.0);
+}
+
+TEST(SweepSpec, ShardsCoverEveryRunExactlyOnce) {
+  const auto path = WriteTemp("c.yaml", "scenarios: [a, b, c]\nalgorithms: [odometry]\nseeds: 7\n");
+  const auto runs = ExpandSweep(LoadSweepSpec(path));
+  for (std::size_t n : {1u, 2u, 4u, 5u, 30u}) {
+    std::vector<int> covered(runs.size(), 0);
+    for (std::size_t shard = 0; shard < n; ++shard)
+      for (const auto& r : runs)
+        if (r.index % n == shard) ++covered[r.index];
+    for (int c : covered) EXPECT_EQ(c, 1);
+  }
+}
+
+TEST(SweepSpec, ErrorsNameFileLineAndFix) {
+  struct Case { std::string text, expect; };
+  const std::vector<Case> cases = {
+      {"scenarios: [loop]\nalgorithms: [odometry]\nseeds: 3\nseedz: 4\n", ":4: unknown key 'seedz'"},
+      {"scenarios: [loop]\nalgorithms: [odometry]\n", "missing 'seeds'"},
+      {"scenarios: []\nalgorithms: [odometry]\nseeds: 2\n", ":1: 'scenarios' must be a non-empty list"},
+      {"scenarios: [loop]\nalgorithms: [odometry]\nseeds: -1\n", ":3: seeds must be 1..100000"},
+      {"scenarios: [loop]\nalgorithms: [odometry]\nseeds: [1, 1]\n", "a seed is listed twice"},
+      {"scenarios: [loop]\nalgorithms: [odometry]\nseeds: 2\ngrid: {robot.laps: 3}\n", "needs a non-empty list"},
+      {"scenarios: [loop]\nalgorithms: [odometry]\nseeds: 2\ntimeout_s: 0\n", "timeout_s must be a positive number"},
+      {"scenarios: [loop\n", "not valid YAML"},
+  };
+  for (const auto& c : cases) {
+    const auto path = WriteTemp("bad.yaml", c.text);
+    try {
+      LoadSweepSpec(path);
+      ADD_FAILURE() << "accepted: " << c.text;
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(path), std::string::npos) << msg;
+      EXPECT_NE(msg.find(c.expect), std::string::npos) << msg;
+      EXPECT_NE(msg.find("fix:"), std::string::npos) << msg;
+    }
+  }
+}
+
+TEST(Csv, QuotesRoundTrip) {
+  const CsvRow row = {"plain", "with,comma", "with \"quote\"", "", "[0.1, 0.2]"};
+  const auto rows = ParseCsv(CsvLine(row) + CsvLine(row), "x.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1], row);
+  EXPECT_THROW(ParseCsv("a,b\n1\n", "x.csv"), InputError);
+  EXPECT_THROW(ParseCsv("a,b\n\"1,2\n", "x.csv"), InputError);
+}
+
+TEST(Summary, StatisticsMatchHandComputedValues) {
+  const CellStats s = Summarize({2.0, 4.0, 4.0, 5.0});
+  EXPECT_EQ(s.n, 4);
+  EXPECT_DOUBLE_EQ(s.mean, 3.75);
+  EXPECT_NEAR(s.std, std::sqrt(4.75 / 3.0), 1e-12);  // squares 3.0625+0.0625+0.0625+1.5625, n-1 = 3
+  EXPECT_DOUBLE_EQ(s.median, 4.0);
+  const double half = 3.182 * s.std / 2.0;  // t(0.975, 3) = 3.182
+  EXPECT_NEAR(s.ci95_low, 3.75 - half, 1e-12);
+  EXPECT_NEAR(s.ci95_high, 3.75 + half, 1e-12);
+  EXPECT_EQ(Summarize({}).n, 0);
+  EXPECT_DOUBLE_EQ(Summarize({7.0}).ci95_high, 7.0);
+}
+
+TEST(Summary, CheckFlagsAPlantedRegressionOnly) {
+  const std::string header = "run_id,scenario,seed,algorithm,status,robot.laps,ate_rmse_m,anees\n";
+  const auto base = WriteTemp("base.csv", header +
+                                              "r1,loop,0,odometry,ok,1,1.0,3\n"
+                                              "r2,loop,1,odometry,ok,1,1.2,3\n"
+                                              "r3,loop,0,ekf-slam,ok,1,0.10,3\n");
+  const auto same = WriteTemp("same.csv", header +
+                                              "r1,loop,0,odometry,ok,1,1.05,9\n"
+                                              "r2,loop,1,odometry,ok,1,1.2,9\n"
+                                              "r3,loop,0,ekf-slam,ok,1,0.10,9\n");
+  EXPECT_TRUE(CheckBaseline(same, base, 0.1, 0.0).empty()) << "5% worse is inside 10% tolerance; anees is not an error metric";
+  const auto worse = WriteTemp("worse.csv", header +
+                                                "r1,loop,0,odometry,ok,1,1.0,3\n"
+                                                "r2,loop,1,odometry,ok,1,1.2,3\n"
+                                                "r3,loop,0,ekf-slam,ok,1,0.13,3\n");
+  const auto reg = CheckBaseline(worse, base, 0.1, 0.0);
+  ASSERT_EQ(reg.size(), 1u);
+  EXPECT_EQ(reg[0].cell, "loop | robot.laps=1 | ekf-slam");
+  EXPECT_EQ(reg[0].metric, "ate_rmse_m");
+  EXPECT_DOUBLE_EQ(reg[0].current_mean, 0.13);
+  const auto lost = WriteTemp("lost.csv", header + "r1,loop,0,odometry,ok,1,1.0,3\nr2,loop,1,odometry,ok,1,1.2,3\n");
+  const auto missing = CheckBaseline(lost, base, 0.1, 0.0);
+  ASSERT_EQ(missing.size(), 1u);
+  EXPECT_TRUE(std::isnan(missing[0].current_mean));
+}
+
+TEST(Summary, TimingKeysStayOutOfResults) {
+  EXPECT_TRUE(IsTimingKey("runtime_s"));
+  EXPECT_TRUE(IsTimingKey("realtime_factor"));
+  EXPECT_TRUE(IsTimingKey("step_time_p95_s"));
+  EXPECT_TRUE(IsTimingKey("peak_memory_mb"));
+  EXPECT_FALSE(IsTimingKey("ate_rmse_m"));
+  EXPECT_FALSE(IsTimingKey("anees"));
+}
+
+}  // namespace
+}  // namespace slambox

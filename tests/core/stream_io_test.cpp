@@ -1,0 +1,128 @@
+#include "core/stream_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "tests/support/synthetic_stream.hpp"
+
+namespace slambox {
+namespace {
+
+Stream SmallStream() {
+  testing::SyntheticOptions o;
+  o.path = {{0, 0}, {3, 0}, {3, 2}};
+  o.sensors.odometry = OdometryConfig{};
+  o.sensors.landmarks = LandmarkSensorConfig{};
+  o.sensors.lidar = LidarConfig{.beams = 36, .range_max_m = 8};
+  o.sensors.gyro = GyroConfig{.rate_hz = 25, .sigma_dps = 0.2, .bias_dps = -0.1};
+  World w;
+  w.wall_segments = {{{-1, -1}, {5, -1}}, {{5, -1}, {5, 4}}};
+  w.wall_circles = {{{2, 3}, 0.25}};
+  w.landmarks = {{0, {1, 1}, 0.1}, {4, {2, -0.5}, 0.1}};
+  w.movers = {{{{0, 3}, {4, 3}}, 0.3, {0, 0}}};
+  Stream s = testing::MakeSyntheticStream(o, w);
+  s.header.slambox_version = "0.1.0";
+  s.header.scenario_yaml = "version: 1\nname: synthetic\n";
+  s.header.seed = 0xFFFFFFFFFFFFFFF1ull;  // the full uint64 range survives
+  s.events.push_back(GyroEvent{s.header.duration_s, -0.0123456789});
+  for (auto& e : s.events)
+    if (auto* lm = std::get_if<LandmarkEvent>(&e)) {
+      lm->observations.push_back({3.25, -1.5, -1});  // clutter id
+      break;
+    }
+  return s;
+}
+
+std::string TempPath(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("slambox_stream_io_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string ErrorOf(const std::string& path) {
+  try {
+    ReadStream(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(StreamIo, FileRoundTripIsBitIdentical) {
+  const Stream s = SmallStream();
+  const std::string path = TempPath("round_trip.stream");
+  WriteStream(s, path);
+  EXPECT_TRUE(IsStreamFile(path));
+  const Stream r = ReadStream(path);
+  EXPECT_EQ(SerializeStream(r), SerializeStream(s));
+  ASSERT_EQ(r.events.size(), s.events.size());
+  ASSERT_EQ(r.groundtruth.size(), s.groundtruth.size());
+  EXPECT_EQ(r.header.seed, s.header.seed);
+  EXPECT_EQ(r.header.scenario_yaml, s.header.scenario_yaml);
+  EXPECT_EQ(r.header.sensors.lidar->beams, 36);
+  EXPECT_EQ(r.header.sensors.gyro->bias_dps, -0.1);
+  EXPECT_EQ(r.header.world.movers.at(0).radius_m, 0.3);
+  for (size_t i = 0; i < s.events.size(); ++i) ASSERT_EQ(r.events[i].index(), s.events[i].index());
+  for (size_t i = 0; i < s.groundtruth.size(); ++i)
+    EXPECT_EQ(std::memcmp(&r.groundtruth[i], &s.groundtruth[i], sizeof(StampedPose)), 0);
+  const auto lm = std::find_if(r.events.begin(), r.events.end(),
+                               [](const SensorEvent& e) { return std::holds_alternative<LandmarkEvent>(e); });
+  ASSERT_NE(lm, r.events.end());
+  EXPECT_EQ(std::get<LandmarkEvent>(*lm).observations.back().id, -1);
+  EXPECT_EQ(std::get<GyroEvent>(r.events.back()).yaw_rate_rps, -0.0123456789);
+}
+
+TEST(StreamIo, TruncatedFileNamesFileAndOffset) {
+  const std::string bytes = SerializeStream(SmallStream());
+  const std::string path = TempPath("truncated.stream");
+  for (size_t keep : {size_t{5}, size_t{40}, bytes.size() / 2, bytes.size() - 1}) {
+    WriteBytes(path, bytes.substr(0, keep));
+    const std::string err = ErrorOf(path);
+    EXPECT_NE(err.find(path), std::string::npos) << err;
+    EXPECT_TRUE(err.find("truncated") != std::string::npos || err.find("not a slambox stream") != std::string::npos) << err;
+    if (keep > 12) {
+      EXPECT_NE(err.find("byte offset"), std::string::npos) << err;
+    }
+    EXPECT_NE(err.find("fix:"), std::string::npos) << err;
+  }
+}
+
+TEST(StreamIo, WrongVersionAndWrongMagicAreClearErrors) {
+  std::string bytes = SerializeStream(SmallStream());
+  const std::string path = TempPath("version.stream");
+  bytes[8] = 7;  // format version 7
+  WriteBytes(path, bytes);
+  const std::string err = ErrorOf(path);
+  EXPECT_NE(err.find("format version 7"), std::string::npos) << err;
+  EXPECT_NE(err.find("reads version 1"), std::string::npos) << err;
+  WriteBytes(path, "version: 1\nname: loop\n");
+  EXPECT_FALSE(IsStreamFile(path));
+  EXPECT_NE(ErrorOf(path).find("not a slambox stream"), std::string::npos);
+}
+
+TEST(StreamIo, CorruptionIsDetected) {
+  const std::string bytes = SerializeStream(SmallStream());
+  const std::string path = TempPath("corrupt.stream");
+  for (size_t at : {bytes.size() / 3, bytes.size() / 2, bytes.size() - 30}) {
+    std::string bad = bytes;
+    bad[at] = static_cast<char>(bad[at] ^ 0x5A);
+    WriteBytes(path, bad);
+    const std::string err = ErrorOf(path);
+    EXPECT_FALSE(err.empty()) << "flip at " << at;
+    EXPECT_NE(err.find("byte offset"), std::string::npos) << err;
+  }
+}
+
+}  // namespace
+}  // namespace slambox
