@@ -35,7 +35,7 @@ struct IcpPoseSlamConfig {
   double fixed_sigma_theta_deg = 0.5;    ///< [deg] fixed information, heading
   LoopClosureConfig loop;
   std::string loop_kernel = "dcs";       ///< none | huber | cauchy | dcs, on loop edges only
-  double loop_kernel_scale = 5.0;        ///< Huber/Cauchy scale on the whitened residual; DCS Phi
+  double loop_kernel_scale = 100.0;        ///< Huber/Cauchy scale on the whitened residual; DCS Phi
   double loop_accept_weight = 0.5;       ///< a loop edge the back-end weights below this counts as rejected
   int solve_max_iterations = 50;
   double source_voxel_m = 0.0;           ///< [m] subsample scans (0 = every valid beam)
