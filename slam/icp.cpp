@@ -44,6 +44,8 @@ double RobustWeight(IcpRobustKernel kernel, double e, double scale) {
 namespace {
 
 struct Pairs {
+  std::vector<Eigen::Vector2d> transformed;  // scratch: every source point in the target frame
+  std::vector<double> beam;                  // scratch: its bearing [rad]
   std::vector<Eigen::Vector2d> source, target, normal;
   std::vector<double> residual, weight;
   void clear() {
@@ -58,13 +60,23 @@ void FindPairs(const std::vector<Eigen::Vector2d>& source, const IcpTarget& targ
   const Eigen::Vector2d t = T.translation();
   const double gate2 = config.max_correspondence_m * config.max_correspondence_m;
   const bool p2l = config.metric == IcpMetric::kPointToLine;
-  for (const Eigen::Vector2d& p : source) {
-    const Eigen::Vector2d q = R * p + t;
+  const bool projection = config.correspondence == IcpCorrespondence::kProjection;
+  // Projection: transform and find every bearing first, in loops the compiler vectorizes.
+  std::vector<Eigen::Vector2d>& q_all = pairs.transformed;
+  std::vector<double>& beam_all = pairs.beam;
+  q_all.resize(source.size());
+  for (size_t i = 0; i < source.size(); ++i) q_all[i] = R * source[i] + t;
+  if (projection) {
+    beam_all.resize(source.size());
+    for (size_t i = 0; i < source.size(); ++i) beam_all[i] = FastAtan2(q_all[i].y(), q_all[i].x());
+  }
+  for (size_t i = 0; i < source.size(); ++i) {
+    const Eigen::Vector2d& p = source[i];
+    const Eigen::Vector2d& q = q_all[i];
     int j = -1;
     double d2 = 0;
-    const bool found = config.correspondence == IcpCorrespondence::kProjection
-                           ? NearestByProjection(target, q, config.projection_window_beams, &j, &d2)
-                           : NearestByKdTree(target, q, &j, &d2);
+    const bool found = projection ? NearestOnBeams(target, q, beam_all[i], config.projection_window_beams, &j, &d2)
+                                  : NearestByKdTree(target, q, &j, &d2);
     if (!found || d2 > gate2) continue;
     const Eigen::Vector2d& n = target.normals[static_cast<size_t>(j)];
     if (p2l && n.squaredNorm() == 0.0) continue;
@@ -92,19 +104,6 @@ void FindPairs(const std::vector<Eigen::Vector2d>& source, const IcpTarget& targ
     pairs.weight[i] = RobustWeight(config.robust_kernel, pairs.residual[i], config.robust_scale_m);
 }
 
-/// Point-to-line Hessian over additive (t_x, t_y, theta): J_i = [n^T, n^T perp(R s_i)].
-Eigen::Matrix3d PointToLineHessian(const Pairs& pairs, const SE2& T) {
-  const Eigen::Matrix2d R = T.rotation();
-  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < pairs.source.size(); ++i) {
-    const Eigen::Vector2d& n = pairs.normal[i];
-    const Eigen::Vector2d rs = R * pairs.source[i];
-    const Eigen::Vector3d J(n.x(), n.y(), -n.x() * rs.y() + n.y() * rs.x());
-    H.noalias() += pairs.weight[i] * J * J.transpose();
-  }
-  return H;
-}
-
 }  // namespace
 
 IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarget& target, const SE2& guess,
@@ -125,7 +124,9 @@ IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarge
       result.converged = false;
       return result;
     }
-    result.hessian = PointToLineHessian(pairs, T);
+    // Zero normals (point-to-point pairs off a surface) add nothing to these sums.
+    const PointToLineSums sums = AccumulatePointToLine(pairs.source, pairs.target, pairs.normal, pairs.weight);
+    result.hessian = PointToLineHessian(sums, T.theta);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     eig.computeDirect(result.hessian);
     result.eigenvalues = eig.eigenvalues();
@@ -144,7 +145,7 @@ IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarge
 
     const SE2 T_new = config.metric == IcpMetric::kPointToPoint
                           ? AlignPointToPoint(pairs.source, pairs.target, pairs.weight)
-                          : AlignPointToLine(pairs.source, pairs.target, pairs.normal, pairs.weight, T);
+                          : SolvePointToLine(sums, T);
     Eigen::Vector3d step(T_new.x - T.x, T_new.y - T.y, NormalizeAngle(T_new.theta - T.theta));
     if (config.remap_degenerate) step -= degenerate_mask * step;  // Zhang 2016: no motion along weak directions
     T = SE2(T.x + step.x(), T.y + step.y(), T.theta + step.z());

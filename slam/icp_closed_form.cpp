@@ -27,25 +27,53 @@ SE2 AlignPointToPoint(const std::vector<Eigen::Vector2d>& source, const std::vec
   return {t.x(), t.y(), std::atan2(R(1, 0), R(0, 0))};
 }
 
+PointToLineSums AccumulatePointToLine(const std::vector<Eigen::Vector2d>& source,
+                                      const std::vector<Eigen::Vector2d>& target,
+                                      const std::vector<Eigen::Vector2d>& normals, const std::vector<double>& weights) {
+  // Residual e_i = a_i^T t + b_i^T r - d_i with a = n, b = A(s)^T n, A(s) r = R s, d = n^T q.
+  double aa00 = 0, aa01 = 0, aa11 = 0, ab00 = 0, ab01 = 0, ab10 = 0, ab11 = 0, bb00 = 0, bb01 = 0, bb11 = 0;
+  double ga0 = 0, ga1 = 0, gb0 = 0, gb1 = 0;
+  for (size_t i = 0; i < source.size(); ++i) {
+    const double nx = normals[i].x(), ny = normals[i].y(), sx = source[i].x(), sy = source[i].y();
+    const double b0 = nx * sx + ny * sy, b1 = -nx * sy + ny * sx;
+    const double w = weights[i], d = nx * target[i].x() + ny * target[i].y();
+    const double wnx = w * nx, wny = w * ny, wb0 = w * b0, wb1 = w * b1;
+    aa00 += wnx * nx, aa01 += wnx * ny, aa11 += wny * ny;
+    ab00 += wnx * b0, ab01 += wnx * b1, ab10 += wny * b0, ab11 += wny * b1;
+    bb00 += wb0 * b0, bb01 += wb0 * b1, bb11 += wb1 * b1;
+    ga0 += wnx * d, ga1 += wny * d, gb0 += wb0 * d, gb1 += wb1 * d;
+  }
+  PointToLineSums s;
+  s.Saa << aa00, aa01, aa01, aa11;
+  s.Sab << ab00, ab01, ab10, ab11;
+  s.Sbb << bb00, bb01, bb01, bb11;
+  s.ga << ga0, ga1;
+  s.gb << gb0, gb1;
+  return s;
+}
+
+Eigen::Matrix3d PointToLineHessian(const PointToLineSums& s, double theta_rad) {
+  const Eigen::Vector2d r_perp(-std::sin(theta_rad), std::cos(theta_rad));
+  Eigen::Matrix3d H;
+  H.topLeftCorner<2, 2>() = s.Saa;
+  H.topRightCorner<2, 1>() = s.Sab * r_perp;
+  H.bottomLeftCorner<1, 2>() = (s.Sab * r_perp).transpose();
+  H(2, 2) = r_perp.dot(s.Sbb * r_perp);
+  return H;
+}
+
 SE2 AlignPointToLine(const std::vector<Eigen::Vector2d>& source, const std::vector<Eigen::Vector2d>& target,
                      const std::vector<Eigen::Vector2d>& normals, const std::vector<double>& weights,
                      const SE2& T_current) {
-  // Residual e_i = a_i^T t + b_i^T r - d_i with a = n, b = A(s)^T n, A(s) r = R s, d = n^T q.
-  Eigen::Matrix2d Saa = Eigen::Matrix2d::Zero(), Sab = Eigen::Matrix2d::Zero(), Sbb = Eigen::Matrix2d::Zero();
-  Eigen::Vector2d ga = Eigen::Vector2d::Zero(), gb = Eigen::Vector2d::Zero();
-  for (size_t i = 0; i < source.size(); ++i) {
-    const Eigen::Vector2d& n = normals[i];
-    const Eigen::Vector2d& s = source[i];
-    const Eigen::Vector2d a = n;
-    const Eigen::Vector2d b(n.x() * s.x() + n.y() * s.y(), -n.x() * s.y() + n.y() * s.x());
-    const double d = n.dot(target[i]);
-    const double w = weights[i];
-    Saa += w * a * a.transpose();
-    Sab += w * a * b.transpose();
-    Sbb += w * b * b.transpose();
-    ga += w * d * a;
-    gb += w * d * b;
-  }
+  return SolvePointToLine(AccumulatePointToLine(source, target, normals, weights), T_current);
+}
+
+SE2 SolvePointToLine(const PointToLineSums& sums, const SE2& T_current) {
+  const Eigen::Matrix2d& Saa = sums.Saa;
+  const Eigen::Matrix2d& Sab = sums.Sab;
+  const Eigen::Matrix2d& Sbb = sums.Sbb;
+  const Eigen::Vector2d& ga = sums.ga;
+  const Eigen::Vector2d& gb = sums.gb;
   // Pseudo-inverse of Saa: unconstrained translation directions stay where they are.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> ea(Saa);
   const double floor = 1e-9 * std::max(Saa.trace(), 1e-300);

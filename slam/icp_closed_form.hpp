@@ -24,4 +24,20 @@ SE2 AlignPointToLine(const std::vector<Eigen::Vector2d>& source, const std::vect
                      const std::vector<Eigen::Vector2d>& target_normals, const std::vector<double>& weights,
                      const SE2& T_current);
 
+/// The sums behind the point-to-line cost, with x = (t, r), r = (cos, sin):
+/// cost = x^T [Saa Sab; Sab^T Sbb] x - 2 [ga; gb]^T x + const.
+struct PointToLineSums {
+  Eigen::Matrix2d Saa = Eigen::Matrix2d::Zero(), Sab = Eigen::Matrix2d::Zero(), Sbb = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d ga = Eigen::Vector2d::Zero(), gb = Eigen::Vector2d::Zero();
+};
+PointToLineSums AccumulatePointToLine(const std::vector<Eigen::Vector2d>& source,
+                                      const std::vector<Eigen::Vector2d>& target,
+                                      const std::vector<Eigen::Vector2d>& target_normals,
+                                      const std::vector<double>& weights);
+/// The exact minimizer above, from the sums.
+SE2 SolvePointToLine(const PointToLineSums& sums, const SE2& T_current);
+/// Gauss-Newton Hessian over additive (t_x, t_y, theta) at theta: J_i = [n^T, b_i^T r_perp]
+/// with r_perp = dr/dtheta, so H = [Saa, Sab r_perp; ., r_perp^T Sbb r_perp].
+Eigen::Matrix3d PointToLineHessian(const PointToLineSums& sums, double theta_rad);
+
 }  // namespace slambox

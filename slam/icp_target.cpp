@@ -61,9 +61,9 @@ IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, c
   const double max2 = config.normal_max_neighbor_m * config.normal_max_neighbor_m;
   const bool full_circle = std::abs(beams * geometry.angle_increment_rad - 2 * M_PI) < 1e-6;
   t.normals.assign(static_cast<size_t>(n), Eigen::Vector2d::Zero());
-  std::vector<Eigen::Vector2d> nb;
+  std::vector<Eigen::Vector2d> nb(static_cast<size_t>(2 * config.normal_half_window + 1));
   for (int k = 0; k < n; ++k) {
-    nb.clear();
+    int count = 0;
     const int b0 = sp.beam[static_cast<size_t>(k)];
     for (int db = -config.normal_half_window; db <= config.normal_half_window; ++db) {
       int b = b0 + db;
@@ -71,9 +71,9 @@ IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, c
       if (b < 0 || b >= beams) continue;
       const int j = t.point_of_beam[static_cast<size_t>(b)];
       if (j >= 0 && (t.points[static_cast<size_t>(j)] - t.points[static_cast<size_t>(k)]).squaredNorm() <= max2)
-        nb.push_back(t.points[static_cast<size_t>(j)]);
+        nb[static_cast<size_t>(count++)] = t.points[static_cast<size_t>(j)];
     }
-    if (nb.size() >= 3) t.normals[static_cast<size_t>(k)] = FitNormal(nb.data(), static_cast<int>(nb.size()));
+    if (count >= 3) t.normals[static_cast<size_t>(k)] = FitNormal(nb.data(), count);
   }
   t.full_circle = full_circle;
   t.inverse_increment = 1.0 / geometry.angle_increment_rad;

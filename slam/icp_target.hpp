@@ -53,25 +53,26 @@ bool NearestByKdTree(const IcpTarget& target, const Eigen::Vector2d& q, int* ind
 Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count);
 
 /// atan2 with |error| <= 1e-5 rad (Abramowitz & Stegun 4.4.49); enough to pick a beam.
+/// Branch-free so that loops over it vectorize.
 inline double FastAtan2(double y, double x) {
   const double ax = std::abs(x), ay = std::abs(y);
-  const double mx = std::max(ax, ay);
-  if (mx == 0.0) return 0.0;
-  const double a = std::min(ax, ay) / mx, a2 = a * a;
+  const double mx = std::max(ax, ay), mn = std::min(ax, ay);
+  const double a = mn / (mx + 1e-300), a2 = a * a;
   double r = a * (0.9998660 + a2 * (-0.3302995 + a2 * (0.1801410 + a2 * (-0.0851330 + a2 * 0.0208351))));
-  if (ay > ax) r = M_PI_2 - r;
-  if (x < 0) r = M_PI - r;
+  r = ay > ax ? M_PI_2 - r : r;
+  r = x < 0 ? M_PI - r : r;
   return y < 0 ? -r : r;
 }
 
 /// The nearest among the target points on beams within +-window_beams (<= kBeamPad) of
-/// q's bearing. False when none of those beams has a point. Inline: ICP's inner loop.
-inline bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& q, int window_beams, int* index,
-                                double* dist2_m2) {
+/// bearing_rad, q's bearing in the target frame. False when none of those beams has a
+/// point. Inline: ICP's inner loop.
+inline bool NearestOnBeams(const IcpTarget& target, const Eigen::Vector2d& q, double bearing_rad, int window_beams,
+                           int* index, double* dist2_m2) {
   const int beams = static_cast<int>(target.point_of_beam.size());
   assert(beams > 0 && "IcpTarget has no beam index (not built from a scan)");
   assert(window_beams <= IcpTarget::kBeamPad);
-  double f = (FastAtan2(q.y(), q.x()) - target.angle_min_rad) * target.inverse_increment;
+  double f = (bearing_rad - target.angle_min_rad) * target.inverse_increment;
   if (target.full_circle) {
     if (f < -0.5) f += beams;
     else if (f >= beams - 0.5) f -= beams;
@@ -92,6 +93,12 @@ inline bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& 
   *index = best_i;
   *dist2_m2 = best;
   return true;
+}
+
+/// NearestOnBeams at q's own bearing.
+inline bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& q, int window_beams, int* index,
+                                double* dist2_m2) {
+  return NearestOnBeams(target, q, FastAtan2(q.y(), q.x()), window_beams, index, dist2_m2);
 }
 
 }  // namespace slambox
