@@ -4,7 +4,8 @@
 // proposed/accepted (accepted false = between poses whose true positions are > 1 m apart
 // after applying the measured relative pose), and the real-time factor of the module
 // (stream duration over wall time, and over process CPU time).
-//   ./build/bench/icp_scenarios_bench [seeds=10] [scenario ...]
+//   ./build/bench/icp_scenarios_bench [seeds=10] [scenario ...] [FIELD=VALUE ...]
+// FIELD=VALUE pairs override both ICP modules' parameters (e.g. robust_kernel=huber).
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -47,7 +48,13 @@ int FalseAccepted(const Estimate& e, const Stream& s) {
 int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 10;
   std::vector<std::string> scenarios;
-  for (int i = 2; i < argc; ++i) scenarios.push_back(argv[i]);
+  ParamOverrides overrides;
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const auto eq = arg.find('=');
+    if (eq == std::string::npos) scenarios.push_back(arg);
+    else overrides[arg.substr(0, eq)] = arg.substr(eq + 1);
+  }
   if (scenarios.empty()) scenarios = {"loop", "tunnel", "symmetric"};
   const std::vector<ModuleInfo> modules = {DeadReckoningModule(), IcpOdometryModule(), IcpPoseSlamModule()};
   std::printf("%-10s %4s %-13s %9s %6s %6s %6s %8s %8s\n", "scenario", "seed", "algorithm", "ate_m", "loops", "acc",
@@ -58,7 +65,7 @@ int main(int argc, char** argv) {
     for (int seed = 0; seed < seeds; ++seed) {
       const Stream s = Simulate(scenario, static_cast<std::uint64_t>(seed));
       for (const auto& m : modules) {
-        auto module = m.create({});
+        auto module = m.create(m.name == "odometry" ? ParamOverrides{} : overrides);
         const auto t0 = std::chrono::steady_clock::now();
         const std::clock_t c0 = std::clock();
         const Estimate e = Replay(*module, s);

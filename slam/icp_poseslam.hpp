@@ -21,7 +21,7 @@ namespace slambox {
 
 struct IcpPoseSlamConfig {
   IcpConfig icp;                        ///< front end: scan to keyframe
-  IcpChoices icp_choices;
+  IcpChoices icp_choices{.robust_kernel = "geman-mcclure"};  ///< redescending weights: movers do not drag ICP
   IcpConfig loop_icp{.correspondence = IcpCorrespondence::kKdTree, .max_iterations = 50,
                      .max_correspondence_m = 0.5};
   IcpChoices loop_icp_choices{.correspondence = "kdtree"};
