@@ -17,10 +17,10 @@ class InputError : public std::runtime_error {
  private:
   static std::string Format(const std::string& file, int line, const std::string& problem,
                             const std::string& fix) {
-    std::string where = file.empty() ? std::string("<input>") : file;
-    if (line > 0) where += ":" + std::to_string(line);
-    std::string msg = where + ": " + problem;
-    if (!fix.empty()) msg += "\n  fix: " + fix;
+    std::string msg = file.empty() ? std::string("<input>") : file;
+    if (line > 0) msg.append(":").append(std::to_string(line));
+    msg.append(": ").append(problem);
+    if (!fix.empty()) msg.append("\n  fix: ").append(fix);
     return msg;
   }
   std::string file_;

@@ -8,6 +8,13 @@ OdometryIncrement Decompose(const SE2& delta) {
   OdometryIncrement u;
   u.trans = std::hypot(delta.x, delta.y);
   u.rot1 = u.trans < 1e-9 ? 0.0 : std::atan2(delta.y, delta.x);
+  // Backward motion (a noisy in-place turn measures a tiny negative translation): a
+  // negative trans with |rot1| <= pi/2 instead of rot1 near ±pi, which would inflate
+  // the a1 rot1^2 noise term by orders of magnitude.
+  if (std::abs(u.rot1) > M_PI / 2) {
+    u.rot1 = NormalizeAngle(u.rot1 + M_PI);
+    u.trans = -u.trans;
+  }
   u.rot2 = NormalizeAngle(delta.theta - u.rot1);
   return u;
 }

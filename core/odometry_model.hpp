@@ -15,8 +15,9 @@ struct OdometryIncrement {
   double rot2 = 0.0;   ///< [rad]
 };
 
-/// Decomposes a relative pose (robot frame) into (rot1, trans, rot2). For a translation
-/// under 1e-9 m, rot1 = 0 and the whole rotation goes to rot2.
+/// Decomposes a relative pose (robot frame) into (rot1, trans, rot2) with |rot1| <= pi/2:
+/// backward motion has trans < 0. For a translation under 1e-9 m, rot1 = 0 and the whole
+/// rotation goes to rot2.
 OdometryIncrement Decompose(const SE2& delta);
 /// The relative pose (trans cos rot1, trans sin rot1, rot1 + rot2).
 SE2 Compose(const OdometryIncrement& u);
