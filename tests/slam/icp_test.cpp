@@ -77,6 +77,21 @@ TEST(Icp, RecoversKnownMotionForEveryVariantForwardAndInverse) {
   }
 }
 
+TEST(Icp, RelativeRotationAcrossPlusMinusPi) {
+  // The source was taken facing backwards: T_target_source's angle is just past -pi and
+  // the guess just below +pi; steps and convergence must use the wrapped difference.
+  const SE2 T_true(0.12, -0.05, -M_PI + 0.02);
+  const ScanPair pair = MakePair(RoomWalls(), SE2(0.3, 0.2, 0.1), T_true, 0.0, 8);
+  for (const Variant& v : kVariants) {
+    const IcpResult r = RegisterIcp(pair.source.points, pair.target, SE2(0.1, -0.02, M_PI - 0.02), ConfigFor(v));
+    const double tol_m = v.metric == IcpMetric::kPointToPoint ? 0.02 : 2e-3;
+    EXPECT_TRUE(r.converged) << v.name;
+    EXPECT_NEAR(r.T_target_source.x, T_true.x, tol_m) << v.name;
+    EXPECT_NEAR(r.T_target_source.y, T_true.y, tol_m) << v.name;
+    EXPECT_NEAR(NormalizeAngle(r.T_target_source.theta - T_true.theta), 0.0, tol_m / 2) << v.name;
+  }
+}
+
 TEST(Icp, PointToLineIsAccurateWithRangeNoise) {
   for (std::uint64_t seed = 0; seed < 5; ++seed) {
     const SE2 T_true(0.16, -0.04, -3.0 * M_PI / 180);
