@@ -134,6 +134,7 @@ TEST(IcpClosedForm, PointToLineMatchesGaussNewton) {
     EXPECT_NEAR(T.x, G.x, 1e-7);
     EXPECT_NEAR(T.y, G.y, 1e-7);
     EXPECT_NEAR(NormalizeAngle(T.theta - G.theta), 0.0, 1e-8);
+    EXPECT_LE(CostP2L(p, T), CostP2L(p, G) * (1 + 1e-9) + 1e-15);
   }
 }
 

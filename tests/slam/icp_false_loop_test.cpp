@@ -81,9 +81,11 @@ TEST(IcpPoseSlamBackEnd, FalseLoopClosureIsSwitchedOff) {
     const PoseGraphSolveResult r = SolveIncrementally(g, options);
     ASSERT_TRUE(r.usable);
     EXPECT_LT(r.edge_weights[static_cast<size_t>(g.false_edge)], defaults.loop_accept_weight);
-    for (size_t i = 0; i < g.graph.edges.size(); ++i)
-      if (g.graph.edges[i].loop_closure && static_cast<int>(i) != g.false_edge)
+    for (size_t i = 0; i < g.graph.edges.size(); ++i) {
+      if (g.graph.edges[i].loop_closure && static_cast<int>(i) != g.false_edge) {
         EXPECT_GE(r.edge_weights[i], defaults.loop_accept_weight) << "true closure " << i;
+      }
+    }
     TwoLapGraph reference = MakeGraph(seed);  // the same graph without the false edge, no kernel
     reference.graph.edges.pop_back();
     SolveIncrementally(reference, {});

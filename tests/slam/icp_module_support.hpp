@@ -17,7 +17,7 @@ inline World RingWorld() {
   w.wall_segments = Polyline({{-2, -2}, {12, -2}, {12, 12}, {-2, 12}}, true);
   const auto inner = Polyline({{2, 2}, {8, 2}, {8, 8}, {2, 8}}, true);
   w.wall_segments.insert(w.wall_segments.end(), inner.begin(), inner.end());
-  for (const Eigen::Vector2d c : {Eigen::Vector2d(5, -1.2), Eigen::Vector2d(11, 5), Eigen::Vector2d(4, 11.2),
+  for (const Eigen::Vector2d& c : {Eigen::Vector2d(5, -1.2), Eigen::Vector2d(11, 5), Eigen::Vector2d(4, 11.2),
                                   Eigen::Vector2d(-1, 3)}) {
     const auto box = Polyline({c + Eigen::Vector2d(-0.2, -0.2), c + Eigen::Vector2d(0.2, -0.2),
                                c + Eigen::Vector2d(0.2, 0.2), c + Eigen::Vector2d(-0.2, 0.2)}, true);
