@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "core/error.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/icp_odometry.hpp"
 #include "slam/icp_poseslam.hpp"
@@ -32,6 +33,23 @@ TEST(IcpPoseSlam, AccurateOnTwoLapRingWithLoopClosures) {
   EXPECT_GT(est.pose_graph.nodes.size(), 50u);
   EXPECT_EQ(est.pose_graph.node_t_s.size(), est.pose_graph.nodes.size());
   EXPECT_TRUE(est.diagnostics.count("loop_closures_accepted"));
+}
+
+TEST(IcpPoseSlam, DeterministicAndEveryParameterSettable) {
+  const Stream s = testing::RingStream(12, 1);
+  const ParamOverrides o = {{"loop_kernel", "cauchy"}, {"edge_information", "fixed"}, {"loop_icp_max_iterations", "40"}};
+  const Estimate a = testing::RunModule(IcpPoseSlamModule(), s, o);
+  const Estimate b = testing::RunModule(IcpPoseSlamModule(), s, o);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (size_t i = 0; i < a.trajectory.size(); ++i) {
+    EXPECT_EQ(a.trajectory[i].pose.x, b.trajectory[i].pose.x);
+    EXPECT_EQ(a.trajectory[i].pose.y, b.trajectory[i].pose.y);
+    EXPECT_EQ(a.trajectory[i].pose.theta, b.trajectory[i].pose.theta);
+  }
+  EXPECT_LT(testing::PositionRmse(a, s), 0.1);
+  EXPECT_THROW(IcpPoseSlamModule().create({{"loop_kernel", "tukey"}}), InputError);
+  EXPECT_THROW(IcpPoseSlamModule().create({{"keyframe_distance_m", "0"}}), InputError);
+  EXPECT_GT(IcpPoseSlamModule().params().size(), 40u);
 }
 
 }  // namespace
