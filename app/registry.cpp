@@ -4,6 +4,8 @@
 #include "slam/dead_reckoning.hpp"
 #include "slam/ekf_slam.hpp"
 #include "slam/fastslam.hpp"
+#include "slam/icp_odometry.hpp"
+#include "slam/icp_poseslam.hpp"
 
 namespace slambox {
 
@@ -13,6 +15,8 @@ const std::vector<ModuleInfo>& AllModules() {
       EkfSlamModule(),
       FastSlam1Module(),
       FastSlam2Module(),
+      IcpOdometryModule(),
+      IcpPoseSlamModule(),
   };
   return modules;
 }
