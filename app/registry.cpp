@@ -3,7 +3,10 @@
 #include "core/error.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/ekf_slam.hpp"
+#include "slam/fastslam.hpp"
 #include "slam/graphslam.hpp"
+#include "slam/icp_odometry.hpp"
+#include "slam/icp_poseslam.hpp"
 
 namespace slambox {
 
@@ -12,6 +15,10 @@ const std::vector<ModuleInfo>& AllModules() {
       DeadReckoningModule(),
       EkfSlamModule(),
       GraphSlamModule(),
+      FastSlam1Module(),
+      FastSlam2Module(),
+      IcpOdometryModule(),
+      IcpPoseSlamModule(),
   };
   return modules;
 }

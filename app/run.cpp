@@ -114,6 +114,10 @@ json RunAndWrite(const RunRequest& request) {
   const fs::path dir(request.output_dir);
   fs::create_directories(dir);
   const GroundTruth gt{stream.groundtruth, stream.header.world};
+  EvalOptions options;
+  // With unknown ids a module's landmark ids are its own indices: match by assignment.
+  const auto& lm = stream.header.sensors.landmarks;
+  options.landmarks.matching = lm && lm->known_ids ? LandmarkMatching::kById : LandmarkMatching::kOptimal;
   json doc;
   doc["slambox_version"] = kVersion;
   doc["scenario"] = stream.header.scenario_name;
@@ -133,7 +137,7 @@ json RunAndWrite(const RunRequest& request) {
     json metrics;
     try {
       const Estimate estimate = Replay(*modules[i], stream);
-      const Evaluation evaluation = EvaluateEstimate(gt, estimate);
+      const Evaluation evaluation = EvaluateEstimate(gt, estimate, options);
       metrics = evaluation.metrics;
       WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
       WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));

@@ -95,6 +95,11 @@ std::vector<double> YTicks(const Axes& a) {
   return a.log_y ? LogTicks(a.y0, a.y1) : NiceTicks(a.y0, a.y1, std::max(3, static_cast<int>((a.area.bottom - a.area.top) / 90)));
 }
 std::vector<double> XTicks(const Axes& a) {
+  if (!a.x_categories.empty()) {
+    std::vector<double> t;
+    for (const auto& [x, label] : a.x_categories) t.push_back(x);
+    return t;
+  }
   return NiceTicks(a.x0, a.x1, std::max(3, static_cast<int>((a.area.right - a.area.left) / 110)));
 }
 }  // namespace
@@ -122,7 +127,10 @@ void DrawFrame(Canvas& c, const Axes& a, const AxesLabels& labels, const FigureS
   for (double x : xt) {
     const double px = a.ToPixel(x, a.log_y ? a.y0 : 0.0).x();
     c.Line({px, r.bottom}, {px, r.bottom + tick_len}, frame);
-    c.Text(px, r.bottom + tick_len + 5, FormatTick(x, xstep), tick_text);
+    std::string label = FormatTick(x, xstep);
+    for (const auto& [cx, text] : a.x_categories)
+      if (cx == x) label = text;
+    c.Text(px, r.bottom + tick_len + 5, label, tick_text);
   }
   tick_text.h = HAlign::kRight;
   tick_text.v = VAlign::kMiddle;
@@ -145,9 +153,13 @@ void DrawFrame(Canvas& c, const Axes& a, const AxesLabels& labels, const FigureS
     v.v = VAlign::kBottom;
     c.Text(r.left - tick_len - 12 - max_label_w, 0.5 * (r.top + r.bottom), labels.y_label, v);
   }
-  if (!labels.title.empty())
-    c.Text(0.5 * (r.left + r.right), r.top - 12,
-           labels.title, {.size_px = st.title_px, .h = HAlign::kCenter, .v = VAlign::kBaseline, .weight = FontWeight::kBold});
+  if (!labels.title.empty()) {
+    // Shrink a long title to fit the canvas rather than clip it.
+    const double w = TextWidth(labels.title, st.title_px, FontWeight::kBold), room = c.width() - 20.0;
+    const double size = w > room ? st.title_px * room / w : st.title_px;
+    const double cx = std::clamp(0.5 * (r.left + r.right), 10.0 + 0.5 * std::min(w, room), c.width() - 10.0 - 0.5 * std::min(w, room));
+    c.Text(cx, r.top - 14, labels.title, {.size_px = size, .h = HAlign::kCenter, .v = VAlign::kBaseline, .weight = FontWeight::kBold});
+  }
 }
 
 void DrawScaleBar(Canvas& c, const Axes& a, double x, double y, double max_len_px, const FigureStyle& st) {

@@ -12,11 +12,12 @@ namespace slambox::render {
 
 /// Font sizes and strokes shared by every figure [px].
 struct FigureStyle {
-  double title_px = 20.0;
-  double label_px = 17.0;
-  double tick_px = 15.0;
-  double legend_px = 15.0;
-  double frame_width_px = 1.2;
+  // Sized for a 1000-1200 px wide figure shrunk to one column of a paper (~8 pt text).
+  double title_px = 24.0;
+  double label_px = 21.0;
+  double tick_px = 19.0;
+  double legend_px = 19.0;
+  double frame_width_px = 1.4;
   double grid_width_px = 1.0;
 };
 
@@ -28,6 +29,8 @@ struct Axes {
   PlotArea area;
   double x0 = 0, x1 = 1, y0 = 0, y1 = 1;  ///< data range shown (y0 at the bottom)
   bool log_y = false;                     ///< y on a log10 scale (y0, y1 > 0)
+  /// Categorical x: ticks at these positions with these labels instead of round numbers.
+  std::vector<std::pair<double, std::string>> x_categories;
   Eigen::Vector2d ToPixel(double x, double y) const;
   Eigen::Vector2d ToPixel(const Eigen::Vector2d& p) const { return ToPixel(p.x(), p.y()); }
   double PixelsPerUnitX() const { return (area.right - area.left) / (x1 - x0); }

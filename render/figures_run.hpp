@@ -19,3 +19,8 @@ std::vector<std::string> RenderRunFiguresListed(const std::string& run_dir);
 int RenderRunFrames(const std::string& run_dir, int frame_count = 120);
 
 }  // namespace slambox::render
+
+namespace slambox {
+// The app calls the entry points by their short names.
+using render::RenderRunFigures;
+}  // namespace slambox

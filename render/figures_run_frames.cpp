@@ -31,7 +31,7 @@ int RenderRunFrames(const std::string& run_dir, int frame_count) {
     for (auto& a : cut.algorithms) a.trajectory = Until(a.trajectory, t);
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d", k);
-    written += DrawTrajectoriesFigure(cut, (dir / name).string(), /*full_extent=*/&run);
+    written += DrawTrajectoriesFigure(cut, (dir / name).string(), /*extent_of=*/&run, /*now_s=*/t);
   }
   return written;
 }

@@ -60,7 +60,7 @@ void DrawGrid(Canvas& c, const Axes& axes, const OccupancyGrid& g) {
 
 }  // namespace
 
-bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of) {
+bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of, double now_s) {
   if (run.groundtruth.empty() && std::none_of(run.algorithms.begin(), run.algorithms.end(),
                                               [](const auto& a) { return !a.trajectory.empty(); }))
     return false;
@@ -69,7 +69,7 @@ bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const
   for (size_t i = 0; i < run.algorithms.size(); ++i)
     if (!run.algorithms[i].trajectory.empty()) legend.push_back(LineEntry(AlgorithmStyle(run, i)));
   legend.push_back({.label = "start", .line = {{}, 0.0, {}}, .marker = MarkerShape::kTriangle, .marker_color = color::kYellow});
-  legend.push_back({.label = "end", .line = {{}, 0.0, {}}, .marker = MarkerShape::kSquare, .marker_color = Rgba{0.5, 0.5, 0.5}});
+  legend.push_back({.label = now_s >= 0 ? "now" : "end", .line = {{}, 0.0, {}}, .marker = MarkerShape::kSquare, .marker_color = Rgba{0.5, 0.5, 0.5}});
   if (run.has_world)
     for (const auto& e : WorldLegend(run.world)) legend.push_back(e);
 
@@ -90,7 +90,7 @@ bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const
   const auto& start_src = !run.groundtruth.empty() ? run.groundtruth : run.algorithms.front().trajectory;
   if (!start_src.empty())
     DrawMarker(fig.canvas, fig.axes.ToPixel(start_src.front().pose.translation()), MarkerShape::kTriangle, 18.0, color::kYellow);
-  fig.Finish(RunTitle(run, "Trajectories"), legend);
+  fig.Finish(RunTitle(run, "Trajectories") + (now_s >= 0 ? ", " + FormatSeconds(now_s) : ""), legend);
   SaveFigure(fig.canvas, stem);
   return true;
 }
@@ -151,7 +151,7 @@ bool DrawUncertaintyFigure(const RunFolder& run, size_t algo, const std::string&
     if (p.has_covariance && p.covariance.allFinite()) with_cov.push_back(&p);
   if (with_cov.size() < 2) return false;
   const SeriesStyle style = AlgorithmStyle(run, algo);
-  const Rgba c = style.stroke.color.a < 1 || a.name == "odometry" ? color::kBlue : style.stroke.color;
+  const Rgba c = style.stroke.color;
   const Stroke gt_stroke{color::kGroundTruth.WithAlpha(0.6), 1.6, {}};
   std::vector<LegendEntry> legend{{.label = "ground truth", .line = gt_stroke}, {.label = a.name + " estimate", .line = {c, 2.0, {}}},
                                   {.label = "2\u03c3 position ellipse", .line = {c, 1.4, {}}, .patch = c.WithAlpha(0.15)}};
@@ -160,15 +160,19 @@ bool DrawUncertaintyFigure(const RunFolder& run, size_t algo, const std::string&
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, true);
   DrawPath(fig.canvas, fig.axes, run.groundtruth, gt_stroke);
   DrawPath(fig.canvas, fig.axes, PosesOf(*a.estimate), {c, 2.0, {}});
-  // About 40 ellipses, evenly spaced in time along the path.
-  const size_t count = std::min<size_t>(40, with_cov.size());
+  // About 30 ellipses, evenly spaced in time along the path. Ellipses larger than a
+  // tenth of the view are outlined only: overlapping fills would hide everything.
+  const double view_px = std::min(fig.axes.area.right - fig.axes.area.left, fig.axes.area.bottom - fig.axes.area.top);
+  const size_t count = std::min<size_t>(30, with_cov.size());
   for (size_t k = 0; k < count; ++k) {
     const PoseEstimate& p = *with_cov[k * (with_cov.size() - 1) / std::max<size_t>(1, count - 1)];
     std::vector<Eigen::Vector2d> px;
     for (const auto& q : CovarianceEllipse(p.pose.translation(), p.covariance.topLeftCorner<2, 2>(), 2.0, 96))
       px.push_back(fig.axes.ToPixel(q));
     if (px.empty()) continue;
-    fig.canvas.FillPolygon(px, c.WithAlpha(0.15));
+    Eigen::Vector2d lo = px[0], hi = px[0];
+    for (const auto& q : px) { lo = lo.cwiseMin(q); hi = hi.cwiseMax(q); }
+    if ((hi - lo).maxCoeff() < 0.1 * view_px) fig.canvas.FillPolygon(px, c.WithAlpha(0.15));
     px.push_back(px.front());
     fig.canvas.Polyline(px, {c, 1.4, {}});
   }

@@ -9,8 +9,10 @@ namespace slambox::render {
 
 inline constexpr int kFigureWidthPx = 1200;
 
-/// `extent_of` (default: run) fixes the region shown, so animation frames do not jump.
-bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of = nullptr);
+/// For animation frames: `extent_of` fixes the region shown (so frames do not jump) and
+/// `now_s` >= 0 titles the frame with its time and labels the path ends "now".
+bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of = nullptr,
+                            double now_s = -1.0);
 bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem);
 bool DrawUncertaintyFigure(const RunFolder& run, size_t algo, const std::string& stem);
 bool DrawParticlesFigure(const RunFolder& run, size_t algo, const std::string& stem);

@@ -57,19 +57,20 @@ bool DrawErrorFigure(const RunFolder& run, const std::string& stem) {
     if (!a.series) continue;
     SeriesStyle s = AlgorithmStyle(run, i);
     if (!a.series->ate_m.empty()) ate.push_back({s, &a.series->distance_m, &a.series->ate_m});
-    s.stroke.width_px = 1.6;  // RPE is noisier: thinner lines stay readable
+    s.stroke.width_px = 1.6;  // RPE is noisier: thin solid lines stay readable
+    s.stroke.dash_px.clear();
     if (!a.series->rpe_trans_m.empty()) rpe.push_back({s, &a.series->rpe_distance_m, &a.series->rpe_trans_m});
   }
   if (ate.empty() && rpe.empty()) return false;
   const int width = kFigureWidthPx, panels = (!ate.empty()) + (!rpe.empty());
-  const int panel_h = 400, height = 56 + panels * (panel_h + 60) - 60 + 10;
+  const int panel_h = 420, height = 62 + panels * (panel_h + 60) - 60 + 10;
   Canvas c(width, height, 3);
   std::vector<LegendEntry> legend;
   for (const auto& l : ate.empty() ? rpe : ate) legend.push_back({.label = l.style.label, .line = l.style.stroke});
-  double top = 56.0;
+  double top = 62.0;
   auto panel = [&](const std::vector<Line>& lines, const std::string& title, const std::string& ylabel) {
     const Eigen::Vector2d xr = RangeOf(lines, true), yr = RangeOf(lines, false);
-    const PlotArea area{100.0, top, width - 30.0, top + panel_h - 70.0};
+    const PlotArea area{112.0, top, width - 30.0, top + panel_h - 90.0};
     const Axes axes = MakeAxes(area, NiceRange(0.0, std::isfinite(xr[1]) ? xr[1] : 1.0),
                                NiceRange(0.0, std::isfinite(yr[1]) ? yr[1] * 1.05 : 1.0));
     const auto pts = DrawPanel(c, axes, lines, {title, "distance travelled [m]", ylabel});
@@ -91,6 +92,7 @@ bool DrawNeesFigure(const RunFolder& run, const std::string& stem) {
     if (!a.series || !std::isfinite(FiniteRange(a.series->nees, true)[0])) continue;
     SeriesStyle s = AlgorithmStyle(run, i);
     s.stroke.width_px = 1.6;
+    s.stroke.dash_px.clear();
     lines.push_back({s, &a.series->t_s, &a.series->nees});
     if (!std::isfinite(band_lo)) {
       band_lo = a.series->nees_band_lo;
@@ -112,8 +114,8 @@ bool DrawNeesFigure(const RunFolder& run, const std::string& stem) {
   // Log axis from the decade below the smallest value to the decade above the largest.
   const double y0 = std::pow(10.0, std::floor(std::log10(lo))), y1 = std::pow(10.0, std::ceil(std::log10(hi * 1.0001)));
   const Eigen::Vector2d xr = RangeOf(lines, true);
-  Canvas c(kFigureWidthPx, 560, 3);
-  const Axes axes = MakeAxes({100.0, 56.0, kFigureWidthPx - 30.0, 560 - 72.0}, NiceRange(0.0, xr[1]), {y0, y1}, true);
+  Canvas c(kFigureWidthPx, 600, 3);
+  const Axes axes = MakeAxes({112.0, 62.0, kFigureWidthPx - 30.0, 600 - 88.0}, NiceRange(0.0, xr[1]), {y0, y1}, true);
   std::vector<LegendEntry> legend;
   const Rgba band_color = color::kSkyBlue.WithAlpha(0.28);
   auto shade_band = [&] {

@@ -14,6 +14,8 @@ namespace slambox::render {
 
 namespace {
 
+const FigureStyle kStyle{};
+
 namespace fs = std::filesystem;
 
 std::string Safe(std::string s) {
@@ -29,12 +31,6 @@ std::string MetricLabel(const std::string& m) {
   if (m == "ate_aligned_rmse_m") return "aligned ATE RMSE [m]";
   if (m == "anees") return "ANEES";
   return m;
-}
-
-std::string Short(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
 }
 
 std::vector<double> Values(const SweepFolder& sw, const std::string& metric, auto&& keep) {
@@ -66,8 +62,8 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
       hi = std::max({hi, g.whisker_hi, g.outliers.empty() ? g.whisker_hi : *std::max_element(g.outliers.begin(), g.outliers.end())});
     }
   if (!(lo <= hi)) return false;
-  Canvas c(1100, 620, 3);
-  const PlotArea area{100, 56, 1100 - 30, 620 - 90};
+  Canvas c(1100, 660, 3);
+  const PlotArea area{112, 62, 1100 - 30, 660 - 110};
   const Axes axes = MakeAxes(area, {0.0, static_cast<double>(sw.scenarios.size())}, NiceRange(std::min(0.0, lo), hi * 1.05));
   // Horizontal grid only: x is categorical.
   for (double y : NiceTicks(axes.y0, axes.y1, 5)) {
@@ -79,11 +75,11 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
   std::vector<Eigen::Vector2d> pts;
   for (size_t s = 0; s < sw.scenarios.size(); ++s) {
     const double gx = area.left + (s + 0.5) * group_w;
-    c.Text(gx, area.bottom + 12, sw.scenarios[s], {.size_px = 16, .h = HAlign::kCenter, .v = VAlign::kTop});
+    c.Text(gx, area.bottom + 12, sw.scenarios[s], {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kTop});
     for (size_t a = 0; a < sw.algorithms.size(); ++a) {
       const GroupStats& g = stats[s][a];
       if (g.n == 0) continue;
-      const Rgba col = SeriesColor(static_cast<int>(a));
+      const Rgba col = ModuleColor(sw.algorithms, a);
       const double x = gx + (a - 0.5 * (sw.algorithms.size() - 1)) * box_w * 1.15;
       auto Y = [&](double v) { return axes.ToPixel(0, v).y(); };
       const Stroke line{col, 1.6, {}};
@@ -107,45 +103,66 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
   double max_w = 0;
   for (double y : yt) {
     const std::string label = FormatTick(y, yt.size() > 1 ? yt[1] - yt[0] : 1.0);
-    max_w = std::max(max_w, TextWidth(label, 15));
+    max_w = std::max(max_w, TextWidth(label, kStyle.tick_px));
     c.Line({area.left - 6, axes.ToPixel(0, y).y()}, {area.left, axes.ToPixel(0, y).y()}, {color::kBlack, 1.2, {}});
-    c.Text(area.left - 11, axes.ToPixel(0, y).y(), label, {.size_px = 15, .h = HAlign::kRight, .v = VAlign::kMiddle});
+    c.Text(area.left - 11, axes.ToPixel(0, y).y(), label, {.size_px = kStyle.tick_px, .h = HAlign::kRight, .v = VAlign::kMiddle});
   }
   c.Text(area.left - 24 - max_w, 0.5 * (area.top + area.bottom), MetricLabel(metric),
-         {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
-  c.Text(0.5 * (area.left + area.right), area.bottom + 48, "scenario", {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kTop});
-  c.Text(0.5 * (area.left + area.right), area.top - 12, MetricLabel(metric) + " per module and scenario (all seeds" +
-         std::string(sw.grid_keys.empty() ? ")" : " and grid cells)"), {.size_px = 20, .h = HAlign::kCenter, .weight = FontWeight::kBold});
+         {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
+  c.Text(0.5 * (area.left + area.right), area.bottom + 50, "scenario", {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kTop});
+  c.Text(0.5 * (area.left + area.right), area.top - 14, MetricLabel(metric) + " per module and scenario (all seeds" +
+         std::string(sw.grid_keys.empty() ? ")" : " and grid cells)"), {.size_px = kStyle.title_px, .h = HAlign::kCenter, .weight = FontWeight::kBold});
   std::vector<LegendEntry> legend;
   for (size_t a = 0; a < sw.algorithms.size(); ++a)
-    legend.push_back({.label = sw.algorithms[a], .line = {{}, 0.0, {}}, .patch = SeriesColor(static_cast<int>(a)).WithAlpha(0.5)});
+    legend.push_back({.label = sw.algorithms[a], .line = {{}, 0.0, {}}, .patch = ModuleColor(sw.algorithms, a).WithAlpha(0.5)});
   DrawLegend(c, frame_axes, legend, pts);
   SaveFigure(c, stem);
   return true;
 }
 
-/// Numeric values of a swept key, sorted; empty when any value is not a number.
-std::vector<double> NumericLevels(const SweepFolder& sw, const std::string& key) {
-  std::vector<double> levels;
+/// The values a swept key takes, as written in results.csv: sorted by value and placed at
+/// that value when all are numbers, else categories at 0, 1, ... in order of appearance.
+struct Levels {
+  std::vector<std::string> text;
+  std::vector<double> x;
+  bool numeric = true;
+};
+
+Levels LevelsOf(const SweepFolder& sw, const std::string& key) {
+  Levels lv;
   for (const auto& r : sw.rows) {
     const auto it = r.grid.find(key);
-    if (it == r.grid.end()) continue;
-    char* end = nullptr;
-    const double v = std::strtod(it->second.c_str(), &end);
-    if (end == it->second.c_str() || *end != '\0') return {};
-    if (std::find(levels.begin(), levels.end(), v) == levels.end()) levels.push_back(v);
+    if (it != r.grid.end() && std::find(lv.text.begin(), lv.text.end(), it->second) == lv.text.end())
+      lv.text.push_back(it->second);
   }
-  std::sort(levels.begin(), levels.end());
-  return levels;
+  std::vector<std::pair<double, std::string>> numbers;
+  for (const auto& t : lv.text) {
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || *end != '\0') lv.numeric = false;
+    numbers.push_back({v, t});
+  }
+  if (lv.numeric) {
+    std::sort(numbers.begin(), numbers.end());
+    lv.text.clear();
+    for (const auto& [v, t] : numbers) {
+      lv.text.push_back(t);
+      lv.x.push_back(v);
+    }
+  } else {
+    for (size_t i = 0; i < lv.text.size(); ++i) lv.x.push_back(static_cast<double>(i));
+  }
+  return lv;
 }
 
-bool MatchesLevel(const SweepRow& r, const std::string& key, double level) {
+bool MatchesLevel(const SweepRow& r, const std::string& key, const std::string& level) {
   const auto it = r.grid.find(key);
-  return it != r.grid.end() && std::strtod(it->second.c_str(), nullptr) == level;
+  return it != r.grid.end() && it->second == level;
 }
 
 bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::string& metric, const std::string& stem) {
-  const std::vector<double> levels = NumericLevels(sw, key);
+  const Levels lv = LevelsOf(sw, key);
+  const std::vector<double>& levels = lv.x;
   if (levels.size() < 2) return false;
   struct Curve { std::string label; Rgba color; std::vector<GroupStats> at; };
   std::vector<Curve> curves;
@@ -153,10 +170,10 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
   for (size_t s = 0; s < sw.scenarios.size(); ++s)
     for (size_t a = 0; a < sw.algorithms.size(); ++a) {
       Curve cu{sw.algorithms[a] + (sw.scenarios.size() > 1 ? " / " + sw.scenarios[s] : ""),
-               SeriesColor(static_cast<int>(a + s * sw.algorithms.size())), {}};
-      for (double lv : levels) {
+               sw.scenarios.size() > 1 ? SeriesColor(static_cast<int>(a + s * sw.algorithms.size())) : ModuleColor(sw.algorithms, a), {}};
+      for (const std::string& level : lv.text) {
         cu.at.push_back(Describe(Values(sw, metric, [&](const SweepRow& r) {
-          return r.scenario == sw.scenarios[s] && r.algorithm == sw.algorithms[a] && MatchesLevel(r, key, lv);
+          return r.scenario == sw.scenarios[s] && r.algorithm == sw.algorithms[a] && MatchesLevel(r, key, level);
         })));
         const GroupStats& g = cu.at.back();
         if (g.n > 0) { lo = std::min(lo, g.mean - g.ci95_half); hi = std::max(hi, g.mean + g.ci95_half); }
@@ -164,10 +181,12 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
       curves.push_back(cu);
     }
   if (!(lo <= hi)) return false;
-  Canvas c(1100, 620, 3);
-  const double pad = 0.05 * (levels.back() - levels.front());
-  const Axes axes = MakeAxes({100, 56, 1100 - 30, 620 - 80}, {levels.front() - pad, levels.back() + pad},
+  Canvas c(1100, 660, 3);
+  const double pad = lv.numeric ? 0.05 * (levels.back() - levels.front()) : 0.5;
+  Axes axes = MakeAxes({112, 62, 1100 - 30, 660 - 88}, {levels.front() - pad, levels.back() + pad},
                              NiceRange(std::min(0.0, lo), hi * 1.05));
+  if (!lv.numeric)
+    for (size_t i = 0; i < levels.size(); ++i) axes.x_categories.push_back({levels[i], lv.text[i]});
   DrawGrid(c, axes);
   std::vector<LegendEntry> legend;
   std::vector<Eigen::Vector2d> pts;
@@ -201,7 +220,9 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
 bool HeatmapFigure(const SweepFolder& sw, const std::string& algo, const std::string& metric, const std::string& stem) {
   if (sw.grid_keys.size() < 2) return false;
   const std::string kx = sw.grid_keys[0], ky = sw.grid_keys[1];
-  const std::vector<double> xs = NumericLevels(sw, kx), ys = NumericLevels(sw, ky);
+  const Levels lx = LevelsOf(sw, kx), ly = LevelsOf(sw, ky);
+  const std::vector<std::string>& xs = lx.text;
+  const std::vector<std::string>& ys = ly.text;
   if (xs.size() < 2 || ys.size() < 2) return false;
   std::vector<std::vector<double>> mean(ys.size(), std::vector<double>(xs.size(), NAN));
   double lo = INFINITY, hi = -INFINITY;
@@ -216,8 +237,11 @@ bool HeatmapFigure(const SweepFolder& sw, const std::string& algo, const std::st
       hi = std::max(hi, g.mean);
     }
   if (!(lo <= hi)) return false;
-  Canvas c(1000, 700, 3);
-  const PlotArea area{130, 56, 1000 - 200, 700 - 90};
+  double y_tick_w = 0.0;  // long category labels widen the left margin
+  for (const auto& y : ys) y_tick_w = std::max(y_tick_w, TextWidth(y, kStyle.tick_px));
+  const double left = std::max(150.0, y_tick_w + 60.0);
+  Canvas c(static_cast<int>(left) + 850, 720, 3);
+  const PlotArea area{left, 62, c.width() - 220.0, 720 - 100};
   const double cw = (area.right - area.left) / xs.size(), ch = (area.bottom - area.top) / ys.size();
   auto u = [&](double v) { return hi > lo ? (v - lo) / (hi - lo) : 0.5; };
   char buf[32];
@@ -229,21 +253,25 @@ bool HeatmapFigure(const SweepFolder& sw, const std::string& algo, const std::st
       c.FillRect(x0, y1 - ch, x0 + cw, y1, col);
       std::snprintf(buf, sizeof buf, std::isfinite(v) ? "%.3g" : "n/a", v);
       const double lum = 0.2126 * col.r + 0.7152 * col.g + 0.0722 * col.b;
-      c.Text(x0 + 0.5 * cw, y1 - 0.5 * ch, buf, {.size_px = 16, .color = lum > 0.5 ? color::kBlack : color::kWhite,
+      c.Text(x0 + 0.5 * cw, y1 - 0.5 * ch, buf, {.size_px = kStyle.legend_px, .color = lum > 0.5 ? color::kBlack : color::kWhite,
                                                 .h = HAlign::kCenter, .v = VAlign::kMiddle});
     }
   c.Polyline({{area.left, area.top}, {area.right, area.top}, {area.right, area.bottom}, {area.left, area.bottom}, {area.left, area.top}},
              {color::kBlack, 1.2, {}});
   for (size_t i = 0; i < xs.size(); ++i)
-    c.Text(area.left + (i + 0.5) * cw, area.bottom + 10, Short(xs[i]),
-           {.size_px = 15, .h = HAlign::kCenter, .v = VAlign::kTop});
+    c.Text(area.left + (i + 0.5) * cw, area.bottom + 10, xs[i],
+           {.size_px = kStyle.tick_px, .h = HAlign::kCenter, .v = VAlign::kTop});
   for (size_t j = 0; j < ys.size(); ++j)
-    c.Text(area.left - 10, area.bottom - (j + 0.5) * ch, Short(ys[j]),
-           {.size_px = 15, .h = HAlign::kRight, .v = VAlign::kMiddle});
-  c.Text(0.5 * (area.left + area.right), area.bottom + 40, kx, {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kTop});
-  c.Text(area.left - 90, 0.5 * (area.top + area.bottom), ky, {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
-  c.Text(0.5 * (area.left + area.right), area.top - 12, MetricLabel(metric) + " of " + algo + (sw.scenarios.size() > 1 ? " (mean over seeds and scenarios)" : " (mean over seeds)"),
-         {.size_px = 20, .h = HAlign::kCenter, .weight = FontWeight::kBold});
+    c.Text(area.left - 10, area.bottom - (j + 0.5) * ch, ys[j],
+           {.size_px = kStyle.tick_px, .h = HAlign::kRight, .v = VAlign::kMiddle});
+  c.Text(0.5 * (area.left + area.right), area.bottom + 46, kx, {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kTop});
+  c.Text(area.left - 20 - y_tick_w, 0.5 * (area.top + area.bottom), ky, {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
+  const std::string title = MetricLabel(metric) + " of " + algo +
+                            (sw.scenarios.size() > 1 ? " (mean over seeds and scenarios)" : " (mean over seeds)");
+  const double title_w = TextWidth(title, kStyle.title_px, FontWeight::kBold);
+  c.Text(0.5 * c.width(), area.top - 14, title,
+         {.size_px = std::min(kStyle.title_px, kStyle.title_px * (c.width() - 20.0) / title_w), .h = HAlign::kCenter,
+          .weight = FontWeight::kBold});
   // Colour bar with round ticks.
   const double bx0 = area.right + 30, bx1 = bx0 + 24;
   const int steps = 128;
@@ -254,13 +282,13 @@ bool HeatmapFigure(const SweepFolder& sw, const std::string& algo, const std::st
   c.Polyline({{bx0, area.top}, {bx1, area.top}, {bx1, area.bottom}, {bx0, area.bottom}, {bx0, area.top}}, {color::kBlack, 1.0, {}});
   const std::vector<double> ticks = NiceTicks(lo, hi > lo ? hi : lo + 1e-9, 5);
   double tick_w = 0.0;
-  for (double t : ticks) tick_w = std::max(tick_w, TextWidth(FormatTick(t, ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0), 14));
+  for (double t : ticks) tick_w = std::max(tick_w, TextWidth(FormatTick(t, ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0), kStyle.tick_px));
   c.Text(bx1 + 18 + tick_w, 0.5 * (area.top + area.bottom), MetricLabel(metric),
-         {.size_px = 16, .h = HAlign::kCenter, .v = VAlign::kTop, .vertical = true});
+         {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kTop, .vertical = true});
   for (double t : ticks) {
     const double y = area.bottom - (area.bottom - area.top) * u(t);
     c.Line({bx1, y}, {bx1 + 5, y}, {color::kBlack, 1.0, {}});
-    c.Text(bx1 + 9, y, FormatTick(t, ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0), {.size_px = 14, .v = VAlign::kMiddle});
+    c.Text(bx1 + 9, y, FormatTick(t, ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0), {.size_px = kStyle.tick_px, .v = VAlign::kMiddle});
   }
   SaveFigure(c, stem);
   return true;

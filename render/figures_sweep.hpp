@@ -14,3 +14,8 @@ void RenderSweepFigures(const std::string& sweep_dir);
 std::vector<std::string> RenderSweepFiguresListed(const std::string& sweep_dir);
 
 }  // namespace slambox::render
+
+namespace slambox {
+// The app calls the entry points by their short names.
+using render::RenderSweepFigures;
+}  // namespace slambox

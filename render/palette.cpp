@@ -9,8 +9,15 @@ namespace slambox::render {
 
 Rgba SeriesColor(int i) {
   static constexpr std::array<Rgba, 6> kSeries{color::kBlue, color::kVermillion, color::kBluishGreen,
-                                               color::kReddishPurple, color::kOrange, color::kSkyBlue};
+                                               color::kReddishPurple, color::kSkyBlue, color::kOrange};
   return kSeries[static_cast<size_t>(((i % 6) + 6) % 6)];
+}
+
+Rgba ModuleColor(const std::vector<std::string>& modules, size_t i) {
+  if (modules.at(i) == "odometry") return color::kOrange;
+  int k = 0;
+  for (size_t j = 0; j < i; ++j) k += modules[j] != "odometry";
+  return SeriesColor(k % 5);  // orange (the 6th) stays odometry's
 }
 
 Rgba Viridis(double u) {

@@ -4,6 +4,7 @@
 // sequential data use viridis (van der Walt & Smith 2015), also perceptually uniform and
 // colorblind-safe.
 #include <string>
+#include <vector>
 
 namespace slambox::render {
 
@@ -25,13 +26,16 @@ inline constexpr Rgba kBlue{0.0, 0.447, 0.698};
 inline constexpr Rgba kVermillion{0.835, 0.369, 0.0};
 inline constexpr Rgba kReddishPurple{0.800, 0.475, 0.655};
 inline constexpr Rgba kGrid{0.88, 0.88, 0.88};
-inline constexpr Rgba kWall{0.25, 0.25, 0.25};
+inline constexpr Rgba kWall{0.55, 0.55, 0.55};  ///< lighter than ground truth (black)
 inline constexpr Rgba kGroundTruth{0.0, 0.0, 0.0};
 }  // namespace color
 
 /// The i-th series colour (Okabe-Ito without black and yellow, which are reserved for
-/// ground truth and too light on white); cycles after 6.
+/// ground truth and too light on white; orange last, as odometry's colour); cycles after 6.
 Rgba SeriesColor(int i);
+/// Colour of module i in a list of module names, the same in every figure: odometry
+/// (the baseline) is orange, the others take SeriesColor in order.
+Rgba ModuleColor(const std::vector<std::string>& modules, size_t i);
 /// Viridis colormap at u in [0, 1] (clamped), piecewise linear through 9 anchors.
 Rgba Viridis(double u);
 /// "#rrggbb" for SVG / HTML.

@@ -32,6 +32,12 @@ std::string Cell(const nlohmann::json& v) {
     return buf;
   }
   if (v.is_string()) return v.get<std::string>();
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_array()) {
+    std::string out = "[";
+    for (const auto& x : v) out += (out.size() > 1 ? ", " : "") + Cell(x);
+    return out + "]";
+  }
   return v.dump();
 }
 
@@ -74,18 +80,24 @@ std::string RunReport(const std::string& dir) {
   std::vector<std::string> cols{"status", "ate_rmse_m", "ate_mean_m", "ate_max_m", "ate_aligned_rmse_m", "rpe_trans_rmse_m",
                                 "rpe_rot_rmse_deg", "anees", "landmark_rmse_m", "loop_closures", "loop_closure_precision",
                                 "runtime_s", "realtime_factor"};
+  const size_t kHeadlineColumns = cols.size();
   const nlohmann::json algos = m.value("algorithms", nlohmann::json::object());
   for (const auto& [name, entry] : algos.items())
     if (entry.is_object())
       for (const auto& [k, v] : entry.items())
         if (std::find(cols.begin(), cols.end(), k) == cols.end()) cols.push_back(k);
-  std::vector<std::string> shown;
-  for (const auto& c : cols)
-    for (const auto& [name, entry] : algos.items())
-      if (entry.is_object() && entry.contains(c)) {
-        shown.push_back(c);
-        break;
-      }
+  // Headline table: one row per module, the DESIGN.md keys. Then every key, transposed
+  // (one row per metric), which stays readable however many metrics eval writes.
+  std::vector<std::string> shown, all;
+  for (size_t i = 0; i < cols.size(); ++i) {
+    bool present = false;
+    for (const auto& [name, entry] : algos.items()) present = present || (entry.is_object() && entry.contains(cols[i]));
+    if (!present) continue;
+    (i < kHeadlineColumns ? shown : all).push_back(cols[i]);
+  }
+  auto cell = [](const nlohmann::json& entry, const std::string& key) {
+    return entry.is_object() && entry.contains(key) ? Cell(entry.at(key)) : std::string("\u2014");
+  };
   md += "| algorithm |";
   for (const auto& c : shown) md += " " + c + " |";
   md += "\n|---|";
@@ -93,8 +105,20 @@ std::string RunReport(const std::string& dir) {
   md += "\n";
   for (const auto& [name, entry] : algos.items()) {
     md += "| " + name + " |";
-    for (const auto& c : shown) md += " " + (entry.contains(c) ? Cell(entry.at(c)) : std::string("\u2014")) + " |";
+    for (const auto& c : shown) md += " " + cell(entry, c) + " |";
     md += "\n";
+  }
+  if (!all.empty()) {
+    md += "\n### All metrics\n\n| metric |";
+    for (const auto& [name, entry] : algos.items()) md += " " + name + " |";
+    md += "\n|---|";
+    for (size_t i = 0; i < algos.size(); ++i) md += "---|";
+    md += "\n";
+    for (const auto& c : all) {
+      md += "| " + c + " |";
+      for (const auto& [name, entry] : algos.items()) md += " " + cell(entry, c) + " |";
+      md += "\n";
+    }
   }
   md += "\nATE: absolute position error at matched timestamps (no alignment); RPE over 1 m of travel; "
         "ANEES: average pose NEES (\u2014 where the module has no covariance).\n";

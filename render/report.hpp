@@ -21,3 +21,8 @@ std::string MarkdownToHtml(const std::string& markdown, const std::string& base_
 std::string Base64(const std::string& bytes);
 
 }  // namespace slambox::render
+
+namespace slambox {
+// The app calls the entry points by their short names.
+using render::WriteReport;
+}  // namespace slambox

@@ -12,20 +12,21 @@ constexpr Rgba kMoverColor{0.800, 0.475, 0.655, 0.8};
 }  // namespace
 
 SeriesStyle AlgorithmStyle(const RunFolder& run, size_t index) {
-  const std::string& name = run.algorithms.at(index).name;
-  if (name == "odometry") return {name, {Rgba{0.45, 0.45, 0.45}, 2.0, {10, 6}}};
-  int k = 0;
-  for (size_t i = 0; i < index; ++i) k += run.algorithms[i].name != "odometry";
-  return {name, {SeriesColor(k), 2.2, {}}};
+  std::vector<std::string> names;
+  for (const auto& a : run.algorithms) names.push_back(a.name);
+  const std::string& name = names.at(index);
+  if (name == "odometry") return {name, {ModuleColor(names, index), 2.2, {10, 6}}};  // the baseline: dashed
+  return {name, {ModuleColor(names, index), 2.6, {}}};
 }
 
-SeriesStyle GroundTruthStyle() { return {"ground truth", {color::kGroundTruth, 2.6, {}}}; }
+// Thin and drawn last: the reference stays visible, estimates show as colour on either side.
+SeriesStyle GroundTruthStyle() { return {"ground truth", {color::kGroundTruth, 1.8, {}}}; }
 
 WorldFigure::WorldFigure(int width_px, int height_px, Eigen::Vector2d lo, Eigen::Vector2d hi,
                          const std::vector<LegendEntry>& legend, const FigureStyle& style)
     : canvas(width_px, height_px, 3) {
   const double legend_w = legend.empty() ? 140.0 : std::max(140.0, LegendSize(legend, style).x() + 24.0);
-  const PlotArea area{92.0, 56.0, width_px - 24.0 - legend_w, height_px - 72.0};
+  const PlotArea area{108.0, 62.0, width_px - 24.0 - legend_w, height_px - 88.0};
   const Eigen::Vector2d pad = 0.04 * (hi - lo).cwiseMax(Eigen::Vector2d(1.0, 1.0));
   axes = MakeEqualAspectAxes(area, lo - pad, hi + pad);
   DrawGrid(canvas, axes, style);
@@ -46,10 +47,10 @@ void WorldFigure::Finish(const std::string& title, const std::vector<LegendEntry
 int WorldFigureHeight(int width_px, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                       const std::vector<LegendEntry>& legend, const FigureStyle& style) {
   const double legend_w = legend.empty() ? 140.0 : std::max(140.0, LegendSize(legend, style).x() + 24.0);
-  const double plot_w = width_px - 116.0 - legend_w;
+  const double plot_w = width_px - 132.0 - legend_w;
   const Eigen::Vector2d span = (hi - lo).cwiseMax(Eigen::Vector2d(1e-3, 1e-3)) * 1.08;
-  const double legend_h = (legend.empty() ? 0.0 : LegendSize(legend, style).y()) + 60.0 + 128.0;  // + scale bar
-  const double h = std::max(plot_w * span.y() / span.x() + 128.0, legend_h);
+  const double legend_h = (legend.empty() ? 0.0 : LegendSize(legend, style).y()) + 70.0 + 150.0;  // + scale bar
+  const double h = std::max(plot_w * span.y() / span.x() + 150.0, legend_h);
   return std::clamp(static_cast<int>(std::lround(h)), 480, 1100);
 }
 
@@ -89,7 +90,7 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> RunExtent(const RunFolder& run, int 
 }
 
 void DrawWorld(Canvas& c, const Axes& axes, const World& world, bool faint) {
-  const Rgba wall = faint ? Rgba{0.72, 0.72, 0.72} : color::kWall;
+  const Rgba wall = faint ? Rgba{0.75, 0.75, 0.75} : color::kWall;
   const double px_per_m = axes.PixelsPerUnitX();
   for (const auto& m : world.movers) {
     std::vector<Eigen::Vector2d> px;
@@ -97,7 +98,7 @@ void DrawWorld(Canvas& c, const Axes& axes, const World& world, bool faint) {
     const double w = std::clamp(2.0 * std::max(m.radius_m, 0.5 * m.box_size_m.maxCoeff()) * px_per_m, 2.0, 14.0);
     c.Polyline(px, {faint ? kMoverColor.WithAlpha(0.25) : kMoverColor.WithAlpha(0.35), w, {}});
   }
-  for (const auto& s : world.wall_segments) c.Line(axes.ToPixel(s.a), axes.ToPixel(s.b), {wall, faint ? 1.5 : 2.5, {}});
+  for (const auto& s : world.wall_segments) c.Line(axes.ToPixel(s.a), axes.ToPixel(s.b), {wall, faint ? 1.5 : 2.2, {}});
   for (const auto& ci : world.wall_circles) c.FillCircle(axes.ToPixel(ci.center), std::max(1.5, ci.radius_m * px_per_m), wall);
   if (faint) return;
   for (const auto& l : world.landmarks) {
@@ -109,7 +110,7 @@ void DrawWorld(Canvas& c, const Axes& axes, const World& world, bool faint) {
 std::vector<LegendEntry> WorldLegend(const World& world) {
   std::vector<LegendEntry> out;
   if (!world.wall_segments.empty() || !world.wall_circles.empty())
-    out.push_back({.label = "walls", .line = {color::kWall, 2.5, {}}});
+    out.push_back({.label = "walls", .line = {color::kWall, 2.2, {}}});
   if (!world.landmarks.empty())
     out.push_back({.label = "posts (true)", .line = {{}, 0.0, {}}, .marker = MarkerShape::kCircle, .marker_color = kPostColor});
   if (!world.movers.empty()) out.push_back({.label = "movers' paths", .line = {kMoverColor.WithAlpha(0.35), 8.0, {}}});

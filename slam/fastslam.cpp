@@ -1,0 +1,271 @@
+#include "slam/fastslam.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include "core/error.hpp"
+#include "core/odometry_model.hpp"
+#include "slam/particle_weights.hpp"
+#include "slam/range_bearing.hpp"
+
+namespace slambox {
+
+void BindParams(FastSlamConfig& c, ParamBinder& b) {
+  b.Bind("particles", c.particles, "-", "number of particles M");
+  b.Bind("new_landmark_gate_chi2", c.new_landmark_gate_chi2, "chi2",
+         "p0 = N(innovation at this squared Mahalanobis distance; 0, R): below it an observation starts a landmark");
+  b.Bind("neff_threshold", c.neff_threshold, "fraction of M", "resample when N_eff < neff_threshold * M");
+  b.Bind("use_known_ids", c.use_known_ids, "-", "associate by the detector's ids when the stream has them");
+  b.Bind("visibility_margin_m", c.visibility_margin_m, "m",
+         "existence counters: a landmark should have been seen within range_max - margin");
+  b.Bind("candidate_margin_m", c.candidate_margin_m, "m", "association candidates lie within range_max + margin");
+  b.Bind("report_min_counter", c.report_min_counter, "-", "unknown ids: report landmarks whose counter reached this");
+  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
+  b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
+  b.Bind("trajectory", c.trajectory, {"best", "mean", "path_mean"},
+         "best particle's path | filtered weighted mean | weighted mean of the final particles' paths");
+}
+void BindParams(FastSlam2Config& c, ParamBinder& b) { BindParams(static_cast<FastSlamConfig&>(c), b); }
+
+namespace {
+
+void Validate(const FastSlamConfig& c, const std::string& name) {
+  const std::string where = "--set algo." + name;
+  auto fail = [&](const std::string& field, const std::string& problem, const std::string& fix) {
+    throw InputError(where + "." + field, 0, problem, fix);
+  };
+  if (c.particles < 1) fail("particles", "needs at least one particle", "set particles >= 1 (e.g. 100)");
+  if (!(c.new_landmark_gate_chi2 > 0)) fail("new_landmark_gate_chi2", "must be positive", "e.g. 25");
+  if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
+  if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
+  if (c.snapshot_period_s < 0) fail("snapshot_period_s", "must not be negative", "0 disables snapshots");
+  if (c.trajectory != "best" && c.trajectory != "mean" && c.trajectory != "path_mean")
+    fail("trajectory", "unknown choice '" + c.trajectory + "'", "use best, mean or path_mean");
+  if (c.visibility_margin_m < 0 || c.candidate_margin_m < 0) fail("visibility_margin_m", "margins must not be negative", "e.g. 0.5");
+}
+
+// Seed of this module's generator from the stream seed and the module name (FNV-1a), so
+// fastslam1 and fastslam2 draw different but reproducible noise.
+std::mt19937_64 MakeGenerator(std::uint64_t seed, const std::string& name) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char ch : name) h = (h ^ ch) * 1099511628211ull;
+  std::seed_seq seq{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
+                    static_cast<std::uint32_t>(h), static_cast<std::uint32_t>(h >> 32)};
+  return std::mt19937_64(seq);
+}
+
+// Covariance of the odometry increment with rot1 and rot2 folded to the nearest of 0 and
+// pi (AMCL's treatment of Thrun's model): a tiny or backward translation decomposes
+// into rot1 ~ pi, rot2 ~ -pi, which must not count as two half turns of rotation noise.
+Eigen::Matrix3d FoldedIncrementCovariance(const OdometryIncrement& u, const std::array<double, 4>& alpha) {
+  auto fold = [](double a) { return std::min(std::abs(a), M_PI - std::abs(a)); };
+  return IncrementCovariance({fold(u.rot1), u.trans, fold(u.rot2)}, alpha);
+}
+
+}  // namespace
+
+FastSlam::FastSlam(const FastSlamConfig& config, bool fastslam2)
+    : config_(config), fastslam2_(fastslam2), name_(fastslam2 ? "fastslam2" : "fastslam1") {
+  Validate(config_, name_);
+}
+
+void FastSlam::Start(const StreamHeader& header) {
+  if (!header.sensors.landmarks)
+    throw InputError(header.scenario_name, 0, name_ + " needs landmark observations but the stream has none",
+                     "add a sensors.landmarks block to the scenario");
+  const LandmarkSensorConfig& lm = *header.sensors.landmarks;
+  alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
+  update_.R = ObservationCovariance(lm);
+  update_.fastslam2 = fastslam2_;
+  update_.known_ids = config_.use_known_ids && lm.known_ids;
+  update_.log_p0 = -std::log(2.0 * M_PI) - 0.5 * std::log(update_.R.determinant()) - 0.5 * config_.new_landmark_gate_chi2;
+  update_.range_max_m = lm.range_max_m;
+  update_.half_fov_rad = 0.5 * lm.fov_deg * M_PI / 180.0;
+  update_.visibility_margin_m = config_.visibility_margin_m;
+  update_.candidate_margin_m = config_.candidate_margin_m;
+  rng_ = MakeGenerator(header.seed, name_);
+  estimate_ = Estimate{};
+  cloud_.clear();
+  particles_.assign(config_.particles, FastSlamParticle{});
+  const PathPtr start = std::make_shared<PathNode>(0.0, header.start_pose, nullptr);
+  for (size_t i = 0; i < particles_.size(); ++i) {
+    particles_[i].pose = header.start_pose;
+    particles_[i].origin = static_cast<int>(i);
+    particles_[i].log_weight = -std::log(static_cast<double>(particles_.size()));
+    particles_[i].path = start;
+  }
+  RecordCloud(0.0);
+  next_snapshot_s_ = 0.0;
+}
+
+void FastSlam::OnOdometry(const OdometryEvent& odometry) {
+  const OdometryIncrement u = Decompose(odometry.delta);
+  const Eigen::Matrix3d M = config_.motion_noise_scale * FoldedIncrementCovariance(u, alpha_);
+  const Eigen::Vector3d sd = M.diagonal().cwiseSqrt();
+  std::normal_distribution<double> n01(0.0, 1.0);
+  for (FastSlamParticle& p : particles_) {
+    if (fastslam2_) {  // keep the Gaussian prior of the proposal: P' = G P G^T + V M V^T
+      const MotionPrediction m = PredictMotion(p.pose, u);
+      p.pose = m.pose;
+      p.pose_covariance = m.J_pose_pose * p.pose_covariance * m.J_pose_pose.transpose() +
+                          m.J_pose_increment * M * m.J_pose_increment.transpose();
+    } else {  // sample the motion model (Thrun Table 5.6): noisy (rot1, trans, rot2)
+      const OdometryIncrement noisy{u.rot1 + sd(0) * n01(rng_), u.trans + sd(1) * n01(rng_),
+                                    u.rot2 + sd(2) * n01(rng_)};
+      p.pose = PredictMotion(p.pose, noisy).pose;
+    }
+    p.path = ExtendPath(p.path, odometry.t_s, p.pose);
+  }
+  RecordCloud(odometry.t_s);
+}
+
+void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
+  const double t = landmarks.t_s;
+  for (FastSlamParticle& p : particles_) {
+    const ParticleUpdateSummary s = UpdateParticle(p, landmarks.observations, update_, rng_);
+    p.log_weight += s.log_weight_factor;
+    p.log_likelihood += s.log_weight_factor;
+    if (fastslam2_) p.path = ExtendPath(p.path, t, p.pose);  // the pose was resampled at t
+  }
+  std::vector<double> log_w(particles_.size());
+  for (size_t i = 0; i < particles_.size(); ++i) log_w[i] = particles_[i].log_weight;
+  const std::vector<double> w = NormalizeLogWeights(log_w);
+  for (size_t i = 0; i < particles_.size(); ++i) particles_[i].log_weight = std::log(w[i]);
+  if (fastslam2_) RecordCloud(t);
+
+  const bool snapshot = config_.snapshot_period_s > 0 && t >= next_snapshot_s_;
+  if (snapshot) Diagnose(t, "map_tree_nodes", static_cast<double>(MapTreeNodes()));  // peak: before resampling
+  const double neff = EffectiveSampleSize(w);
+  const bool resample = neff < config_.neff_threshold * static_cast<double>(particles_.size());
+  if (resample) {  // children share their parent's map tree and path: O(M) pointer copies
+    const std::vector<int> chosen = LowVarianceResample(w, rng_);
+    std::vector<FastSlamParticle> next;
+    next.reserve(particles_.size());
+    for (int i : chosen) next.push_back(particles_[i]);
+    for (FastSlamParticle& p : next) p.log_weight = -std::log(static_cast<double>(next.size()));
+    particles_ = std::move(next);
+  }
+  std::set<int> origins;
+  for (const FastSlamParticle& p : particles_) origins.insert(p.origin);
+  Diagnose(t, "neff", neff);
+  Diagnose(t, "distinct_ancestors", static_cast<double>(origins.size()));
+  Diagnose(t, "resampled", resample ? 1.0 : 0.0);
+  Diagnose(t, "landmarks", particles_[BestParticle()].map.size);
+
+  if (snapshot) {
+    ParticleSnapshot snap{t, {}, {}};
+    const std::vector<double> w_now = NormalizeLogWeights([&] {
+      std::vector<double> lw;
+      for (const FastSlamParticle& p : particles_) lw.push_back(p.log_weight);
+      return lw;
+    }());
+    for (const FastSlamParticle& p : particles_) snap.poses.push_back(p.pose);
+    snap.weights = w_now;
+    estimate_.particles.push_back(std::move(snap));
+    next_snapshot_s_ = t + config_.snapshot_period_s;
+  }
+}
+
+// Weighted mean (circular for the heading) and covariance of the cloud; FastSLAM 2.0 adds
+// the mean of the particles' own prior covariances (law of total covariance).
+void FastSlam::RecordCloud(double t_s) {
+  std::vector<double> log_w;
+  for (const FastSlamParticle& p : particles_) log_w.push_back(p.log_weight);
+  const std::vector<double> w = NormalizeLogWeights(log_w);
+  double x = 0, y = 0, s = 0, c = 0;
+  for (size_t i = 0; i < w.size(); ++i) {
+    x += w[i] * particles_[i].pose.x;
+    y += w[i] * particles_[i].pose.y;
+    s += w[i] * std::sin(particles_[i].pose.theta);
+    c += w[i] * std::cos(particles_[i].pose.theta);
+  }
+  PoseEstimate e{t_s, SE2(x, y, std::atan2(s, c)), Eigen::Matrix3d::Zero(), true};
+  for (size_t i = 0; i < w.size(); ++i) {
+    const SE2& q = particles_[i].pose;
+    const Eigen::Vector3d d(q.x - x, q.y - y, NormalizeAngle(q.theta - e.pose.theta));
+    e.covariance += w[i] * (d * d.transpose() + particles_[i].pose_covariance);
+  }
+  if (!cloud_.empty() && cloud_.back().t_s == t_s) cloud_.back() = e;
+  else cloud_.push_back(e);
+}
+
+int FastSlam::BestParticle() const {
+  int best = 0;
+  for (size_t i = 1; i < particles_.size(); ++i) {
+    const FastSlamParticle &p = particles_[i], &b = particles_[best];
+    if (std::tie(p.log_weight, p.log_likelihood) > std::tie(b.log_weight, b.log_likelihood)) best = static_cast<int>(i);
+  }
+  return best;
+}
+
+size_t FastSlam::MapTreeNodes() const {
+  std::vector<const LandmarkTree*> trees;
+  for (const FastSlamParticle& p : particles_) trees.push_back(&p.map);
+  return CountDistinctNodes(trees);
+}
+
+// The smoothed path: at each time, the weighted mean and covariance of the final
+// particles' ancestral poses (every particle's path has the same times).
+std::vector<PoseEstimate> FastSlam::PathMean() const {
+  std::vector<double> log_w;
+  for (const FastSlamParticle& p : particles_) log_w.push_back(p.log_weight);
+  const std::vector<double> w = NormalizeLogWeights(log_w);
+  std::vector<std::vector<const PathNode*>> paths;
+  for (const FastSlamParticle& p : particles_) paths.push_back(PathPoses(p.path));
+  std::vector<PoseEstimate> out;
+  for (size_t k = 0; k < paths.front().size(); ++k) {
+    double x = 0, y = 0, s = 0, c = 0;
+    for (size_t i = 0; i < w.size(); ++i) {
+      const SE2& q = paths[i][k]->pose;
+      x += w[i] * q.x, y += w[i] * q.y, s += w[i] * std::sin(q.theta), c += w[i] * std::cos(q.theta);
+    }
+    PoseEstimate e{paths.front()[k]->t_s, SE2(x, y, std::atan2(s, c)), Eigen::Matrix3d::Zero(), true};
+    for (size_t i = 0; i < w.size(); ++i) {
+      const SE2& q = paths[i][k]->pose;
+      const Eigen::Vector3d d(q.x - x, q.y - y, NormalizeAngle(q.theta - e.pose.theta));
+      e.covariance += w[i] * d * d.transpose();
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
+Estimate FastSlam::Finish() {
+  if (particles_.empty()) return std::move(estimate_);
+  const FastSlamParticle& best = particles_[BestParticle()];
+  if (config_.trajectory == "mean") {
+    estimate_.trajectory = cloud_;
+  } else if (config_.trajectory == "path_mean") {
+    estimate_.trajectory = PathMean();
+  } else {  // the best particle's ancestry, with the cloud's covariance at the same times
+    size_t k = 0;
+    for (const PathNode* n : PathPoses(best.path)) {
+      while (k < cloud_.size() && cloud_[k].t_s < n->t_s) ++k;
+      PoseEstimate e{n->t_s, n->pose, Eigen::Matrix3d::Zero(), false};
+      if (k < cloud_.size() && cloud_[k].t_s == n->t_s) e.covariance = cloud_[k].covariance, e.has_covariance = true;
+      estimate_.trajectory.push_back(e);
+    }
+  }
+  ForEachLandmark(best.map, [&](int key, const LandmarkGaussian& lm) {
+    if (!update_.known_ids && lm.counter < config_.report_min_counter) return;
+    estimate_.landmarks.push_back({key, lm.mean, lm.covariance, true});
+  });
+  return std::move(estimate_);
+}
+
+ModuleInfo FastSlam1Module() {
+  return MakeModuleInfo<FastSlam1, FastSlamConfig>(
+      "fastslam1", "FastSLAM 1.0: particles with landmark EKFs, motion-model proposal, shared map trees",
+      {.odometry = true, .landmarks = true}, &BindParams);
+}
+
+ModuleInfo FastSlam2Module() {
+  return MakeModuleInfo<FastSlam2, FastSlam2Config>(
+      "fastslam2", "FastSLAM 2.0: particles with landmark EKFs, proposal including the observations",
+      {.odometry = true, .landmarks = true}, &BindParams);
+}
+
+}  // namespace slambox

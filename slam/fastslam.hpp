@@ -1,0 +1,90 @@
+#pragma once
+// `fastslam1` and `fastslam2`: Rao-Blackwellized particle filters for landmark SLAM
+// (Montemerlo et al. 2002, 2003; Thrun, Prob. Robotics, Ch. 13). M particles, each a
+// pose (and its history) with its own map of 2x2 landmark EKFs in a copy-on-write tree
+// shared between particles (slam/landmark_tree.hpp).
+//
+// Output: Estimate::trajectory is the path of the particle with the largest weight at the
+// end (its ancestry's poses at every odometry event; ties on the weight are broken by
+// the lineage's total likelihood), with, at each time, the covariance of the weighted
+// particle cloud (plus the mean of the 2.0 proposal priors) around the weighted mean,
+// for NEES. `trajectory = mean` outputs the filtered weighted mean pose instead,
+// `path_mean` the weighted mean of the final particles' ancestral paths. Landmarks are
+// the best particle's map. Diagnostics per landmark scan: neff (before resampling),
+// distinct_ancestors (initial particles with living descendants), resampled (0/1),
+// landmarks (best particle's map size); map_tree_nodes (distinct live tree nodes of all
+// particles, before resampling) at each particle snapshot.
+#include <array>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/slam_module.hpp"
+#include "slam/fastslam_particle.hpp"
+
+namespace slambox {
+
+struct FastSlamConfig {
+  int particles = 100;  ///< M
+  /// p0 is the density N(nu; 0, R) of an innovation at this squared Mahalanobis distance
+  /// under the sensor noise R alone: log p0 = -log(2 pi) - log det(R)/2 - gate/2.
+  /// An observation starts a new landmark when every landmark's likelihood is below p0.
+  double new_landmark_gate_chi2 = 25.0;
+  double neff_threshold = 0.5;    ///< [fraction of M] resample when N_eff < neff_threshold * M
+  bool use_known_ids = true;      ///< associate by the detector's ids when the stream has them
+  double visibility_margin_m = 0.5;  ///< [m] counters: "should have been seen" within range_max - margin
+  double candidate_margin_m = 2.0;   ///< [m] association candidates: means within range_max + margin
+  int report_min_counter = 10;       ///< unknown ids: report landmarks whose counter reached this (10 Hz: ~1 s net sightings)
+  double motion_noise_scale = 1.0;   ///< factor on the odometry model's covariance
+  double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
+  std::string trajectory = "best";   ///< best | mean | path_mean: what goes into Estimate::trajectory
+};
+void BindParams(FastSlamConfig& c, ParamBinder& b);
+
+/// FastSLAM 2.0 defaults: as FastSlamConfig but with 50 particles.
+struct FastSlam2Config : FastSlamConfig {
+  FastSlam2Config() { particles = 50; }
+};
+void BindParams(FastSlam2Config& c, ParamBinder& b);
+
+class FastSlam : public SlamModule {
+ public:
+  FastSlam(const FastSlamConfig& config, bool fastslam2);
+  void Start(const StreamHeader& header) override;
+  void OnOdometry(const OdometryEvent& odometry) override;
+  void OnLandmarks(const LandmarkEvent& landmarks) override;
+  Estimate Finish() override;
+
+  const std::vector<FastSlamParticle>& particles() const { return particles_; }
+  /// Distinct live landmark-tree nodes over all particles (memory, in nodes).
+  size_t MapTreeNodes() const;
+
+ private:
+  void RecordCloud(double t_s);
+  void Diagnose(double t_s, const std::string& name, double value) { estimate_.diagnostics[name].emplace_back(t_s, value); }
+  int BestParticle() const;
+  std::vector<PoseEstimate> PathMean() const;
+
+  FastSlamConfig config_;
+  bool fastslam2_;
+  std::string name_;
+  std::array<double, 4> alpha_{};
+  ParticleUpdateOptions update_;
+  std::mt19937_64 rng_;
+  std::vector<FastSlamParticle> particles_;
+  std::vector<PoseEstimate> cloud_;  ///< weighted mean and covariance, at each path time
+  double next_snapshot_s_ = 0.0;
+  Estimate estimate_;
+};
+
+struct FastSlam1 : FastSlam {
+  explicit FastSlam1(const FastSlamConfig& c) : FastSlam(c, false) {}
+};
+struct FastSlam2 : FastSlam {
+  explicit FastSlam2(const FastSlam2Config& c) : FastSlam(c, true) {}
+};
+
+ModuleInfo FastSlam1Module();
+ModuleInfo FastSlam2Module();
+
+}  // namespace slambox

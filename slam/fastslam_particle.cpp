@@ -1,0 +1,124 @@
+#include "slam/fastslam_particle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "slam/landmark_ekf.hpp"
+#include "slam/particle_weights.hpp"
+#include "slam/range_bearing.hpp"
+
+namespace slambox {
+
+namespace {
+
+constexpr int kNewLandmark = -1;
+constexpr int kIgnored = -2;  // clutter in known-id mode
+
+struct Association {
+  std::vector<int> key;         // per observation: a landmark key, kNewLandmark or kIgnored
+  std::vector<int> candidates;  // landmarks in range before the update (for the counters)
+};
+
+// Maximum-likelihood correspondences, mutually exclusive within a scan: pairs are taken
+// greedily from the most likely down; an observation whose every likelihood is below p0
+// (or whose candidates were all taken) starts a new landmark (Thrun 13.2, lines 7-16).
+Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector2d>& z,
+                      const std::vector<LandmarkObservation>& scan, const ParticleUpdateOptions& o) {
+  Association a;
+  a.key.assign(scan.size(), kNewLandmark);
+  if (o.known_ids) {
+    for (size_t j = 0; j < scan.size(); ++j)
+      if (scan[j].id < 0) a.key[j] = kIgnored;
+      else if (FindLandmark(p.map, scan[j].id)) a.key[j] = scan[j].id;
+    return a;
+  }
+  const double reach = o.range_max_m + o.candidate_margin_m;
+  const Eigen::Vector2d t = p.pose.translation();
+  a.candidates = LandmarksInBox(p.map, (t.array() - reach).matrix(), (t.array() + reach).matrix());
+  std::vector<std::tuple<double, int, int>> pairs;  // (-log-likelihood, observation, candidate)
+  // The score of z against a landmark: log N(z; h, Q) at the particle's pose (1.0, zero
+  // pose covariance), or the predictive likelihood over the proposal prior (2.0,
+  // Montemerlo 2003).
+  const PoseProposal prior{p.pose, p.pose_covariance};
+  for (size_t c = 0; c < a.candidates.size(); ++c) {
+    const PredictedMeasurement predicted = PredictMeasurement(prior, *FindLandmark(p.map, a.candidates[c]), o.R);
+    for (size_t j = 0; j < z.size(); ++j) {
+      const double ll = LogLikelihood(predicted, z[j]);
+      if (ll >= o.log_p0) pairs.emplace_back(-ll, static_cast<int>(j), static_cast<int>(c));
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<char> taken(a.candidates.size(), 0);
+  std::vector<char> done(z.size(), 0);
+  for (const auto& [neg_ll, j, c] : pairs) {
+    if (done[j] || taken[c]) continue;
+    done[j] = taken[c] = 1;
+    a.key[j] = a.candidates[c];
+  }
+  return a;
+}
+
+// Thrun 13.2 lines 25-31: a landmark in range that should have been seen but was not
+// loses one count; below zero it is discarded.
+int ApplyExistenceCounters(FastSlamParticle& p, const Association& a, const ParticleUpdateOptions& o) {
+  std::vector<int> matched;
+  for (int k : a.key)
+    if (k >= 0) matched.push_back(k);
+  std::sort(matched.begin(), matched.end());
+  int discarded = 0;
+  for (int key : a.candidates) {
+    if (std::binary_search(matched.begin(), matched.end(), key)) continue;
+    LandmarkGaussian lm = *FindLandmark(p.map, key);
+    const Eigen::Vector2d z = PredictObservation(p.pose, lm.mean).z;
+    if (z.x() > o.range_max_m - o.visibility_margin_m || std::abs(z.y()) > o.half_fov_rad) continue;
+    if (--lm.counter < 0) {
+      EraseLandmark(p.map, key);
+      ++discarded;
+    } else {
+      SetLandmark(p.map, key, lm);
+    }
+  }
+  return discarded;
+}
+
+}  // namespace
+
+ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<LandmarkObservation>& scan,
+                                     const ParticleUpdateOptions& o, std::mt19937_64& rng) {
+  std::vector<Eigen::Vector2d> z;
+  z.reserve(scan.size());
+  for (const auto& obs : scan) z.emplace_back(obs.range_m, obs.bearing_rad);
+  const Association a = Associate(p, z, scan, o);
+  ParticleUpdateSummary s;
+
+  if (o.fastslam2) {  // sample the pose from the proposal that includes the observations
+    PoseProposal proposal{p.pose, p.pose_covariance};
+    for (size_t j = 0; j < z.size(); ++j)
+      if (a.key[j] >= 0) s.log_weight_factor += ConditionProposal(proposal, *FindLandmark(p.map, a.key[j]), z[j], o.R);
+    p.pose = SE2::FromVector(SampleGaussian(proposal.mean.vector(), proposal.covariance, rng));
+    p.pose_covariance.setZero();
+  }
+  for (size_t j = 0; j < z.size(); ++j) {
+    const int key = a.key[j];
+    if (key == kIgnored) continue;
+    if (key >= 0) {  // EKF update of the matched landmark at the (sampled) pose
+      const LandmarkGaussian& lm = *FindLandmark(p.map, key);
+      const LandmarkMeasurement m = MeasureLandmark(p.pose, lm, z[j], o.R);
+      if (!o.fastslam2) s.log_weight_factor += m.log_likelihood;
+      LandmarkGaussian updated = UpdateLandmark(lm, m);
+      ++updated.counter;
+      SetLandmark(p.map, key, updated);
+      ++s.matched;
+    } else {  // a new landmark: w_{N+1} = p0 (constant over particles with known ids)
+      const int new_key = o.known_ids ? scan[j].id : p.next_key++;
+      SetLandmark(p.map, new_key, InitializeLandmark(p.pose, z[j], o.R));
+      if (!o.known_ids) s.log_weight_factor += o.log_p0;
+      ++s.created;
+    }
+  }
+  if (!o.known_ids) s.discarded = ApplyExistenceCounters(p, a, o);
+  return s;
+}
+
+}  // namespace slambox

@@ -1,0 +1,53 @@
+#pragma once
+// One FastSLAM particle and its measurement update: data association (known ids, or
+// maximum likelihood against p0), the landmark EKFs, the importance weight and the
+// existence counters (Thrun, Prob. Robotics, Tables 13.1-13.3; Montemerlo et al. 2002,
+// 2003).
+#include <Eigen/Core>
+#include <random>
+#include <vector>
+
+#include "core/stream.hpp"
+#include "slam/landmark_tree.hpp"
+#include "slam/particle_path.hpp"
+
+namespace slambox {
+
+struct FastSlamParticle {
+  SE2 pose;  ///< T_world_robot: a sample (1.0), or the motion-predicted mean since the last sample (2.0)
+  /// FastSLAM 2.0: motion noise accumulated since the pose was last sampled (the prior of
+  /// the proposal); always zero for 1.0.
+  Eigen::Matrix3d pose_covariance = Eigen::Matrix3d::Zero();
+  LandmarkTree map;
+  int next_key = 0;             ///< key of the next new landmark (unknown association)
+  double log_weight = 0.0;      ///< normalized since the last resampling
+  double log_likelihood = 0.0;  ///< sum of all weight factors of this lineage (never reset)
+  int origin = 0;               ///< index of its ancestor among the initial particles
+  PathPtr path;
+};
+
+struct ParticleUpdateOptions {
+  Eigen::Matrix2d R = Eigen::Matrix2d::Identity();  ///< observation covariance (range, bearing)
+  bool fastslam2 = false;
+  /// Associate by the detector's ids (id < 0 is clutter and ignored); otherwise maximum
+  /// likelihood with new landmarks against p0 and the existence counters.
+  bool known_ids = true;
+  double log_p0 = -5.0;  ///< log of p0, the likelihood of "a new landmark" (Thrun 13.2, w_{N+1})
+  double range_max_m = 15.0;       ///< the detector's perceptual range
+  double half_fov_rad = M_PI;      ///< half the detector's field of view
+  double visibility_margin_m = 0.5;  ///< a landmark "should have been seen" only within range_max - margin
+  double candidate_margin_m = 2.0;   ///< candidates for association: means within range_max + margin
+};
+
+struct ParticleUpdateSummary {
+  double log_weight_factor = 0.0;  ///< log p(z | particle) added to the weight
+  int matched = 0;
+  int created = 0;
+  int discarded = 0;  ///< removed by the existence counters
+};
+
+/// Processes one scan for one particle. `rng` draws FastSLAM 2.0's pose sample.
+ParticleUpdateSummary UpdateParticle(FastSlamParticle& particle, const std::vector<LandmarkObservation>& scan,
+                                     const ParticleUpdateOptions& options, std::mt19937_64& rng);
+
+}  // namespace slambox

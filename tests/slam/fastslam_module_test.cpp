@@ -1,0 +1,216 @@
+// The fastslam1 / fastslam2 modules end to end on small synthetic streams: determinism,
+// accuracy against dead reckoning with known and unknown ids, clutter, outputs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+#include "slam/dead_reckoning.hpp"
+#include "slam/fastslam.hpp"
+#include "tests/support/synthetic_stream.hpp"
+
+namespace slambox {
+namespace {
+
+World GridWorld() {
+  World w;
+  int id = 0;
+  for (double x = -2.5; x < 14; x += 4)
+    for (double y = -2.5; y < 14; y += 4) w.landmarks.push_back({id++, {x, y}, 0.1});
+  return w;
+}
+
+Stream MakeStream(std::uint64_t seed, bool known_ids, int laps = 2) {
+  testing::SyntheticOptions o;
+  o.seed = seed;
+  o.laps = laps;
+  o.sensors.odometry = OdometryConfig{.rate_hz = 50, .alpha = {0.05, 0.01, 0.05, 0.01}};
+  o.sensors.landmarks = LandmarkSensorConfig{.range_max_m = 6.0, .sigma_range_m = 0.05,
+                                             .sigma_bearing_deg = 1.0, .known_ids = known_ids};
+  return testing::MakeSyntheticStream(o, GridWorld());
+}
+
+// Adds Poisson(mean) false detections per scan, uniform over the sensor's disc.
+Stream WithClutter(Stream s, double mean_per_scan, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::poisson_distribution<int> count(mean_per_scan);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double r_max = s.header.sensors.landmarks->range_max_m;
+  for (SensorEvent& ev : s.events)
+    if (auto* scan = std::get_if<LandmarkEvent>(&ev))
+      for (int n = count(rng); n > 0; --n)
+        scan->observations.push_back({r_max * std::sqrt(u(rng)), NormalizeAngle(2 * M_PI * u(rng)), -1});
+  return s;
+}
+
+double AteRmse(const Estimate& e, const Stream& s) {
+  double sum = 0;
+  for (const PoseEstimate& p : e.trajectory) {
+    const SE2& gt = s.groundtruth.at(static_cast<size_t>(std::llround(p.t_s / s.header.dt_s))).pose;
+    sum += (p.pose.translation() - gt.translation()).squaredNorm();
+  }
+  return std::sqrt(sum / e.trajectory.size());
+}
+
+// True landmarks with an estimate within 0.5 m, and estimates beyond 0.5 m of any true one.
+struct MapScore {
+  int found = 0, duplicates = 0, spurious = 0;
+};
+MapScore ScoreMap(const Estimate& e, const World& w) {
+  MapScore m;
+  std::vector<int> hits(w.landmarks.size(), 0);
+  for (const LandmarkEstimate& l : e.landmarks) {
+    size_t best = 0;
+    for (size_t i = 1; i < w.landmarks.size(); ++i)
+      if ((w.landmarks[i].position - l.position).norm() < (w.landmarks[best].position - l.position).norm()) best = i;
+    if ((w.landmarks[best].position - l.position).norm() > 0.5) ++m.spurious;
+    else if (hits[best]++ > 0) ++m.duplicates;
+  }
+  for (int h : hits) m.found += h > 0;
+  return m;
+}
+
+template <class Module, class Config, class... Extra>
+Estimate RunModule(const Stream& s, Config c, Extra... extra) {
+  Module m(c, extra...);
+  return Replay(m, s);
+}
+
+TEST(FastSlamModule, SameStreamAndSeedGiveBitIdenticalEstimates) {
+  const Stream s = MakeStream(3, false, 1);
+  for (bool fs2 : {false, true}) {
+    FastSlamConfig c;
+    c.particles = 20;
+    FastSlam a(c, fs2), b(c, fs2);
+    const Estimate ea = Replay(a, s), eb = Replay(b, s);
+    ASSERT_EQ(ea.trajectory.size(), eb.trajectory.size());
+    for (size_t i = 0; i < ea.trajectory.size(); ++i) {
+      EXPECT_EQ(ea.trajectory[i].pose.vector(), eb.trajectory[i].pose.vector());
+      EXPECT_EQ(ea.trajectory[i].covariance, eb.trajectory[i].covariance);
+    }
+    ASSERT_EQ(ea.landmarks.size(), eb.landmarks.size());
+    for (size_t i = 0; i < ea.landmarks.size(); ++i) EXPECT_EQ(ea.landmarks[i].position, eb.landmarks[i].position);
+    EXPECT_EQ(ea.diagnostics, eb.diagnostics);
+  }
+}
+
+TEST(FastSlamModule, OutputsTrajectoryDiagnosticsAndSnapshots) {
+  const Stream s = MakeStream(1, true, 1);
+  FastSlamConfig c;
+  c.particles = 30;
+  const Estimate e = RunModule<FastSlam1>(s, c);
+  // start pose plus one pose per odometry event, each with the cloud's covariance
+  size_t odometry = 0, scans = 0;
+  for (const auto& ev : s.events) odometry += std::holds_alternative<OdometryEvent>(ev), scans += std::holds_alternative<LandmarkEvent>(ev);
+  ASSERT_EQ(e.trajectory.size(), odometry + 1);
+  EXPECT_EQ(e.trajectory.front().pose.vector(), s.header.start_pose.vector());
+  for (const PoseEstimate& p : e.trajectory) EXPECT_TRUE(p.has_covariance);
+  EXPECT_GT(e.trajectory.back().covariance(0, 0), 0.0);
+  for (const char* name : {"neff", "distinct_ancestors", "resampled", "landmarks"})
+    EXPECT_EQ(e.diagnostics.at(name).size(), scans) << name;
+  for (const auto& [t, a] : e.diagnostics.at("distinct_ancestors")) EXPECT_TRUE(a >= 1 && a <= 30);
+  for (const auto& [t, n] : e.diagnostics.at("neff")) EXPECT_TRUE(n >= 1 - 1e-9 && n <= 30 + 1e-9);
+  EXPECT_GE(e.particles.size(), 4u);  // ~50 s run, a snapshot every 10 s
+  EXPECT_EQ(e.particles.front().poses.size(), 30u);
+  EXPECT_EQ(e.landmarks.size(), GridWorld().landmarks.size());
+}
+
+// Tolerances were set from the seeds below with ~1.5x headroom; dead reckoning on the
+// same streams is several times worse.
+TEST(FastSlamModule, KnownIdsAreMuchMoreAccurateThanOdometry) {
+  for (std::uint64_t seed : {11u, 12u}) {
+    const Stream s = MakeStream(seed, true);
+    const double odo = AteRmse(RunModule<DeadReckoning>(s, DeadReckoningConfig{}), s);
+    const Estimate e1 = RunModule<FastSlam1>(s, FastSlamConfig{});
+    const Estimate e2 = RunModule<FastSlam2>(s, FastSlam2Config{});
+    const double a1 = AteRmse(e1, s), a2 = AteRmse(e2, s);
+    std::printf("seed %lu: odometry %.3f fastslam1 %.3f fastslam2 %.3f\n", (unsigned long)seed, odo, a1, a2);
+    EXPECT_LT(a1, std::min(0.2, 0.5 * odo));  // measured 0.054, 0.110
+    EXPECT_LT(a2, std::min(0.15, 0.5 * odo));  // measured 0.079, 0.034
+    EXPECT_EQ(ScoreMap(e2, s.header.world).found, 25);
+    for (const LandmarkEstimate& l : e2.landmarks)  // known ids: the estimate's id is the true id
+      EXPECT_LT((l.position - s.header.world.landmarks.at(l.id).position).norm(), 0.3) << l.id;
+  }
+}
+
+TEST(FastSlamModule, UnknownIdsBuildAMapWithoutDuplicates) {
+  for (std::uint64_t seed : {21u, 22u}) {
+    const Stream s = MakeStream(seed, false);
+    const double odo = AteRmse(RunModule<DeadReckoning>(s, DeadReckoningConfig{}), s);
+    const Estimate e1 = RunModule<FastSlam1>(s, FastSlamConfig{});
+    const Estimate e2 = RunModule<FastSlam2>(s, FastSlam2Config{});
+    const double a1 = AteRmse(e1, s), a2 = AteRmse(e2, s);
+    const MapScore m1 = ScoreMap(e1, s.header.world), m2 = ScoreMap(e2, s.header.world);
+    std::printf("seed %lu: odometry %.3f fastslam1 %.3f (%d/%d/%d) fastslam2 %.3f (%d/%d/%d)\n",
+                (unsigned long)seed, odo, a1, m1.found, m1.duplicates, m1.spurious, a2, m2.found, m2.duplicates,
+                m2.spurious);
+    EXPECT_LT(a1, std::min(0.2, 0.5 * odo));   // measured 0.035, 0.104
+    EXPECT_LT(a2, std::min(0.25, 0.5 * odo));  // measured 0.130, 0.034
+    for (const MapScore& m : {m1, m2}) {
+      EXPECT_EQ(m.found, 25);
+      EXPECT_EQ(m.duplicates, 0);
+      EXPECT_EQ(m.spurious, 0);
+    }
+  }
+}
+
+TEST(FastSlamModule, TrajectoryChoicesShareTimesAndCarryCovariances) {
+  const Stream s = MakeStream(4, true, 1);
+  FastSlamConfig c;
+  c.particles = 20;
+  c.trajectory = "best";
+  const Estimate best = RunModule<FastSlam>(s, c, true);
+  c.trajectory = "mean";
+  const Estimate mean = RunModule<FastSlam>(s, c, true);
+  c.trajectory = "path_mean";
+  const Estimate path_mean = RunModule<FastSlam>(s, c, true);
+  ASSERT_EQ(best.trajectory.size(), mean.trajectory.size());
+  ASSERT_EQ(best.trajectory.size(), path_mean.trajectory.size());
+  for (size_t i = 0; i < best.trajectory.size(); ++i) {
+    EXPECT_EQ(best.trajectory[i].t_s, mean.trajectory[i].t_s);
+    EXPECT_EQ(best.trajectory[i].t_s, path_mean.trajectory[i].t_s);
+    EXPECT_EQ(best.trajectory[i].covariance, mean.trajectory[i].covariance);  // the cloud's
+    EXPECT_LT((best.trajectory[i].pose.translation() - mean.trajectory[i].pose.translation()).norm(), 0.3);
+  }
+  EXPECT_LT(AteRmse(path_mean, s), 0.3);
+}
+
+TEST(FastSlamModule, BadConfigurationIsAnInputError) {
+  EXPECT_THROW(FastSlam(FastSlamConfig{.particles = 0}, false), InputError);
+  EXPECT_THROW(FastSlam(FastSlamConfig{.neff_threshold = 1.5}, true), InputError);
+  EXPECT_THROW(FastSlam(FastSlamConfig{.trajectory = "median"}, true), InputError);
+  const ModuleInfo info = FastSlam2Module();
+  EXPECT_THROW(info.create({{"particles", "-3"}}), InputError);
+  EXPECT_THROW(info.create({{"no_such_field", "1"}}), InputError);
+  for (const ParamInfo& p : info.params()) {
+    if (p.name == "particles") { EXPECT_EQ(p.default_value, "50"); }
+  }
+  for (const ParamInfo& p : FastSlam1Module().params()) {
+    if (p.name == "particles") { EXPECT_EQ(p.default_value, "100"); }
+  }
+  StreamHeader no_landmarks;
+  no_landmarks.sensors.odometry = OdometryConfig{};
+  FastSlam f(FastSlamConfig{}, false);
+  EXPECT_THROW(f.Start(no_landmarks), InputError);
+}
+
+TEST(FastSlamModule, ClutterIsFilteredByTheExistenceCounters) {
+  const Stream s = WithClutter(MakeStream(31, false), 1.0, 99);
+  const double odo = AteRmse(RunModule<DeadReckoning>(s, DeadReckoningConfig{}), s);
+  for (bool fs2 : {false, true}) {
+    FastSlamConfig c;
+    c.particles = fs2 ? 50 : 100;
+    const Estimate e = RunModule<FastSlam>(s, c, fs2);
+    const MapScore m = ScoreMap(e, s.header.world);
+    std::printf("fastslam%d with clutter: ate %.3f (odometry %.3f) found %d duplicates %d spurious %d\n", fs2 ? 2 : 1,
+                AteRmse(e, s), odo, m.found, m.duplicates, m.spurious);
+    EXPECT_LT(AteRmse(e, s), std::min(0.15, 0.5 * odo));  // measured 0.058 (1.0), 0.040 (2.0)
+    EXPECT_EQ(m.found, 25);
+    EXPECT_EQ(m.duplicates, 0);
+    EXPECT_EQ(m.spurious, 0);
+  }
+}
+
+}  // namespace
+}  // namespace slambox

@@ -1,0 +1,56 @@
+// icp-poseslam on a synthetic ring corridor (two laps, fixed seed): loop closures found
+// and accepted, map and graph filled, accuracy far better than wheel odometry.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "core/error.hpp"
+#include "slam/dead_reckoning.hpp"
+#include "slam/icp_odometry.hpp"
+#include "slam/icp_poseslam.hpp"
+#include "tests/slam/icp_module_support.hpp"
+
+namespace slambox {
+namespace {
+
+TEST(IcpPoseSlam, AccurateOnTwoLapRingWithLoopClosures) {
+  const Stream s = testing::RingStream(11, 2);
+  const double odo = testing::PositionRmse(testing::RunModule(DeadReckoningModule(), s), s);
+  const double icp_odo = testing::PositionRmse(testing::RunModule(IcpOdometryModule(), s), s);
+  const Estimate est = testing::RunModule(IcpPoseSlamModule(), s);
+  const double slam = testing::PositionRmse(est, s);
+  int accepted = 0;
+  for (const auto& lc : est.loop_closures) accepted += lc.accepted ? 1 : 0;
+  std::printf("ring x2: odometry %.3f, icp-odometry %.3f, icp-poseslam %.3f m; loops %zu proposed %d accepted\n",
+              odo, icp_odo, slam, est.loop_closures.size(), accepted);
+  EXPECT_LT(slam, 0.05);
+  EXPECT_LT(slam, odo / 10);
+  EXPECT_GE(accepted, 5);
+  ASSERT_EQ(est.trajectory.size(), s.groundtruth.size());
+  EXPECT_FALSE(est.map_points.empty());
+  ASSERT_TRUE(est.grid.has_value());
+  EXPECT_GT(est.grid->width * est.grid->height, 0);
+  EXPECT_GT(est.pose_graph.nodes.size(), 50u);
+  EXPECT_EQ(est.pose_graph.node_t_s.size(), est.pose_graph.nodes.size());
+  EXPECT_TRUE(est.diagnostics.count("loop_closures_accepted"));
+}
+
+TEST(IcpPoseSlam, DeterministicAndEveryParameterSettable) {
+  const Stream s = testing::RingStream(12, 1);
+  const ParamOverrides o = {{"loop_kernel", "cauchy"}, {"edge_information", "fixed"}, {"loop_icp_max_iterations", "40"}};
+  const Estimate a = testing::RunModule(IcpPoseSlamModule(), s, o);
+  const Estimate b = testing::RunModule(IcpPoseSlamModule(), s, o);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (size_t i = 0; i < a.trajectory.size(); ++i) {
+    EXPECT_EQ(a.trajectory[i].pose.x, b.trajectory[i].pose.x);
+    EXPECT_EQ(a.trajectory[i].pose.y, b.trajectory[i].pose.y);
+    EXPECT_EQ(a.trajectory[i].pose.theta, b.trajectory[i].pose.theta);
+  }
+  EXPECT_LT(testing::PositionRmse(a, s), 0.1);
+  EXPECT_THROW(IcpPoseSlamModule().create({{"loop_kernel", "tukey"}}), InputError);
+  EXPECT_THROW(IcpPoseSlamModule().create({{"keyframe_distance_m", "0"}}), InputError);
+  EXPECT_GT(IcpPoseSlamModule().params().size(), 40u);
+}
+
+}  // namespace
+}  // namespace slambox
