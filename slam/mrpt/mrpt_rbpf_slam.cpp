@@ -76,7 +76,9 @@ void MrptRbpfSlam::Start(const StreamHeader& header) {
   s.builder->setMinLoggingLevel(mrpt::system::LVL_ERROR);
   s.builder->mapPDF.setMinLoggingLevel(mrpt::system::LVL_ERROR);
   s.builder->initialize();  // every particle at MRPT's origin = the stream's start pose
-  s.step_t_s.push_back(0.0);
+  std::deque<mrpt::math::TPose3D> path;
+  s.builder->getCurrentMostLikelyPath(path);
+  s.step_t_s.assign(path.size(), 0.0);  // the initial pose(s)
 }
 
 void MrptRbpfSlam::OnOdometry(const OdometryEvent& odometry) { state_->pending.Add(odometry, state_->alpha); }
@@ -93,7 +95,7 @@ void MrptRbpfSlam::OnLaserScan(const LaserScanEvent& scan) {
   std::deque<mrpt::math::TPose3D> path;
   s.builder->getCurrentMostLikelyPath(path);
   if (path.size() > s.step_t_s.size()) {  // MRPT ran a filter step on this scan
-    s.step_t_s.push_back(scan.t_s);
+    s.step_t_s.resize(path.size(), scan.t_s);
     s.estimate.diagnostics["neff"].push_back({scan.t_s, s.builder->mapPDF.ESS() * config_.particles});
   }
 }

@@ -3,6 +3,8 @@
 // landmarks, and the position error of an Estimate against the synthetic ground truth.
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include <cmath>
 #include <map>
 
