@@ -1,5 +1,6 @@
 // `slambox optimize GRAPH [-o OUT.g2o] [--robust none|huber|cauchy|dcs] [--init ...] [--json]`:
 // read a g2o / TORO 2D pose graph, initialize, solve with Ceres, report chi2 before/after.
+// --json keeps the documented key order (DESIGN.md), then adds init, robust and counts.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -66,7 +67,7 @@ void RunOptimize(const OptimizeArgs& args) {
   if (!args.out_path.empty() && result.usable) WritePoseGraph(args.out_path, file.graph, file.vertex_ids);
 
   if (args.json) {
-    nlohmann::json j = {{"vertices", file.graph.poses.size()},
+    nlohmann::ordered_json j = {{"vertices", file.graph.poses.size()},
                         {"edges", file.graph.edges.size()},
                         {"chi2_initial", result.chi2_initial},
                         {"chi2_final", result.chi2_final},

@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "app/registry.hpp"
+#include "core/stream_io.hpp"
 #include "sim/scenario.hpp"
 
 namespace slambox {
@@ -23,7 +24,7 @@ std::string Needs(const SensorNeeds& needs) {
   add(needs.odometry, "odometry");
   add(needs.lidar, "lidar");
   add(needs.landmarks, "landmarks");
-  return out.empty() ? "-" : out;
+  return "[" + (out.empty() ? std::string("-") : out) + "]";
 }
 
 void PrintScenarios() {
@@ -74,10 +75,20 @@ void AddScenarioCommands(CLI::App& app) {
       "show", "Print a scenario (built-in name or YAML file) with every default filled in and overrides applied");
   auto target = std::make_shared<std::string>();
   auto overrides = std::make_shared<std::vector<std::string>>();
-  show->add_option("scenario", *target, "built-in scenario name (see `slambox scenarios`) or a .yaml file")->required();
+  show->add_option("scenario", *target,
+                   "built-in scenario name (see `slambox scenarios`), a .yaml file, or a stream file (its scenario)")
+      ->required();
   show->add_option("--set", *overrides, "override a scenario key, e.g. --set robot.laps=3 (repeatable)")
       ->type_name("KEY=VALUE");
-  show->callback([target, overrides] { std::cout << ScenarioToYaml(LoadScenario(*target, *overrides)); });
+  show->callback([target, overrides] {
+    // A stream carries the resolved scenario it was simulated from.
+    const Scenario scenario =
+        IsStreamFile(*target)
+            ? LoadScenarioText(ReadStream(*target).header.scenario_yaml, *target + " (scenario in the stream header)",
+                               *overrides)
+            : LoadScenario(*target, *overrides);
+    std::cout << ScenarioToYaml(scenario);
+  });
 
   CLI::App* algorithms = app.add_subcommand(
       "algorithms", "List the registered SLAM modules (name, sensors needed, description), or one module's parameters");

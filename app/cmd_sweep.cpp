@@ -90,8 +90,8 @@ int Check(const SweepArgs& a, const std::string& dir) {
 void Finish(const SweepArgs& a, const std::string& dir, const SweepSpec& spec, const std::vector<SweepRun>& runs) {
   WriteSweepSummary(dir, spec, runs);
   if (a.figures) {
-    RenderSweepFigures(dir);
-    WriteReport(dir);
+    render::RenderSweepFigures(dir);
+    render::WriteReport(dir);
   }
   std::cout << "wrote " << dir << "/results.csv, summary.md" << (a.figures ? ", report.html" : "") << "\n";
   if (!a.check.empty())

@@ -147,7 +147,7 @@ json RunAndWrite(const RunRequest& request) {
   }
   doc["peak_rss_mb"] = PeakRssMb();
   WriteJson(dir / "metrics.json", doc);
-  if (request.figures) RenderRunFigures(dir.string());
+  if (request.figures) render::RenderRunFigures(dir.string());
   return doc;
 }
 

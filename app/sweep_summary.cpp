@@ -187,9 +187,9 @@ void WriteSweepSummary(const std::string& out_dir, const SweepSpec& spec, const 
   if (missing) md << "; **" << missing << " runs have no result yet** (resume the sweep)";
   md << ". Cells: mean ± std over seeds, median, 95% t-interval of the mean. Best mean per scenario in bold.\n";
   for (const auto& scenario : spec.scenarios) {
-    md << "\n## " << scenario << "\n\n| cell | ok/runs |";
+    md << "\n## " << scenario << "\n\n| algorithm | parameters | ok/runs |";
     for (const auto& [k, label] : kSummaryMetrics) md << " " << label << " |";
-    md << "\n|---|---|";
+    md << "\n|---|---|---|";
     for (std::size_t i = 0; i < kSummaryMetrics.size(); ++i) md << "---|";
     md << "\n";
     std::map<std::string, double> best;  // metric -> best mean in this scenario
@@ -206,7 +206,13 @@ void WriteSweepSummary(const std::string& out_dir, const SweepSpec& spec, const 
       int ok = 0, all = 0;
       for (const auto& row : table.rows)
         if (CellKey(table, row, GridColumns(table)) == key) { ++all; ok += row[table.Column("status")] == "ok"; }
-      md << "| " << key.substr(scenario.size() + 3) << " | " << ok << "/" << all << " |";
+      // key = "scenario | k=v | ... | algorithm"
+      const std::string rest = key.substr(scenario.size() + 3);
+      const auto last = rest.rfind(" | ");
+      std::string params = last == std::string::npos ? "–" : rest.substr(0, last);
+      for (std::size_t p; (p = params.find(" | ")) != std::string::npos;) params.replace(p, 3, ", ");
+      md << "| " << (last == std::string::npos ? rest : rest.substr(last + 3)) << " | " << params << " | " << ok << "/"
+         << all << " |";
       for (const auto& [metric, label] : kSummaryMetrics) {
         const auto it = values.find(metric);
         if (it == values.end() || it->second.empty()) { md << " – |"; continue; }

@@ -13,6 +13,8 @@
 
 #include "slam/g2o_io.hpp"
 #include "slam/pose_graph.hpp"
+#include "slam/angle_manifold.hpp"
+#include "slam/dcs_loss.hpp"
 #include "slam/pose_graph_cost.hpp"
 #include "slam/pose_graph_init.hpp"
 #include "tests/support/public_data.hpp"
@@ -112,6 +114,7 @@ int main(int argc, char** argv) {
     const PoseGraphFile* f = files.back().get();
     const std::vector<std::pair<std::string, Start>> starts =
         f->has_initial_guess ? std::vector<std::pair<std::string, Start>>{{"file", Start::kFile},
+                                                                          {"odometry", Start::kOdometry},
                                                                           {"lago", Start::kLago}}
                              : std::vector<std::pair<std::string, Start>>{{"odometry", Start::kOdometry},
                                                                           {"lago", Start::kLago}};

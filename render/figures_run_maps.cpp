@@ -60,7 +60,7 @@ void DrawGrid(Canvas& c, const Axes& axes, const OccupancyGrid& g) {
 
 }  // namespace
 
-bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem) {
+bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of) {
   if (run.groundtruth.empty() && std::none_of(run.algorithms.begin(), run.algorithms.end(),
                                               [](const auto& a) { return !a.trajectory.empty(); }))
     return false;
@@ -73,7 +73,7 @@ bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem) {
   if (run.has_world)
     for (const auto& e : WorldLegend(run.world)) legend.push_back(e);
 
-  const auto [lo, hi] = RunExtent(run);
+  const auto [lo, hi] = RunExtent(extent_of ? *extent_of : run);
   WorldFigure fig(kFigureWidthPx, WorldFigureHeight(kFigureWidthPx, lo, hi, legend), lo, hi, legend);
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, false);
   for (size_t i = 0; i < run.algorithms.size(); ++i)

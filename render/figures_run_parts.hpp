@@ -9,7 +9,8 @@ namespace slambox::render {
 
 inline constexpr int kFigureWidthPx = 1200;
 
-bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem);
+/// `extent_of` (default: run) fixes the region shown, so animation frames do not jump.
+bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of = nullptr);
 bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem);
 bool DrawUncertaintyFigure(const RunFolder& run, size_t algo, const std::string& stem);
 bool DrawParticlesFigure(const RunFolder& run, size_t algo, const std::string& stem);

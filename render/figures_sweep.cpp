@@ -242,7 +242,7 @@ bool HeatmapFigure(const SweepFolder& sw, const std::string& algo, const std::st
            {.size_px = 15, .h = HAlign::kRight, .v = VAlign::kMiddle});
   c.Text(0.5 * (area.left + area.right), area.bottom + 40, kx, {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kTop});
   c.Text(area.left - 90, 0.5 * (area.top + area.bottom), ky, {.size_px = 17, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
-  c.Text(0.5 * (area.left + area.right), area.top - 12, MetricLabel(metric) + " of " + algo + " (mean over seeds)",
+  c.Text(0.5 * (area.left + area.right), area.top - 12, MetricLabel(metric) + " of " + algo + (sw.scenarios.size() > 1 ? " (mean over seeds and scenarios)" : " (mean over seeds)"),
          {.size_px = 20, .h = HAlign::kCenter, .weight = FontWeight::kBold});
   // Colour bar with round ticks.
   const double bx0 = area.right + 30, bx1 = bx0 + 24;

@@ -37,23 +37,23 @@ class ClosestHit : public b2RayCastCallback {
 
 Eigen::Vector2d MoverPositionAt(const MoverSpec& mover, double t_s) {
   const auto& path = mover.path;
-  if (path.size() < 2 || mover.speed_mps <= 0.0) return path.empty() ? Eigen::Vector2d::Zero() : path.front();
-  std::vector<double> cumulative{0.0};
-  for (size_t i = 1; i < path.size(); ++i) cumulative.push_back(cumulative.back() + (path[i] - path[i - 1]).norm());
-  const double length = cumulative.back();
-  if (length <= 0.0) return path.front();
-  double s = mover.speed_mps * t_s;
+  if (path.empty()) return Eigen::Vector2d::Zero();
+  double length = 0.0;
+  for (size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
+  if (length <= 0.0 || mover.speed_mps <= 0.0) return path.front();
+  double s = mover.speed_mps * t_s;  // arc length travelled
   if (mover.loop) {
     s = std::fmod(s, 2.0 * length);  // out and back
     if (s > length) s = 2.0 * length - s;
   } else {
     s = std::min(s, length);
   }
-  size_t i = 1;
-  while (i + 1 < path.size() && cumulative[i] < s) ++i;
-  const double seg = cumulative[i] - cumulative[i - 1];
-  const double u = seg > 0.0 ? (s - cumulative[i - 1]) / seg : 0.0;
-  return path[i - 1] + u * (path[i] - path[i - 1]);
+  for (size_t i = 1; i < path.size(); ++i) {
+    const double seg = (path[i] - path[i - 1]).norm();
+    if (s <= seg || i + 1 == path.size()) return seg > 0.0 ? path[i - 1] + std::min(s / seg, 1.0) * (path[i] - path[i - 1]) : path[i];
+    s -= seg;
+  }
+  return path.back();
 }
 
 struct PhysicsWorld::Impl {

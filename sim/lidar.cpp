@@ -15,7 +15,12 @@ ScanAngles LidarScanAngles(const LidarConfig& c) {
 }
 
 LidarSensor::LidarSensor(const LidarConfig& config, std::uint64_t seed)
-    : config_(config), angles_(LidarScanAngles(config)), rng_(MakeGenerator(seed, NoiseSource::kLidar)) {}
+    : config_(config), angles_(LidarScanAngles(config)), rng_(MakeGenerator(seed, NoiseSource::kLidar)) {
+  for (int i = 0; i < config.beams; ++i) {
+    const double a = angles_.angle_min_rad + i * angles_.angle_increment_rad;
+    beam_dirs_.emplace_back(std::cos(a), std::sin(a));
+  }
+}
 
 LaserScanEvent LidarSensor::Scan(double t_s, const SE2& T_world_robot, const RayScene& scene) {
   const LidarConfig& c = config_;
@@ -29,11 +34,17 @@ LaserScanEvent LidarSensor::Scan(double t_s, const SE2& T_world_robot, const Ray
   scan.valid.assign(c.beams, 0);
   const Eigen::Vector2d origin = T_world_robot.translation();
   const double sigma_bearing_rad = c.sigma_bearing_deg * M_PI / 180.0;
+  const Eigen::Matrix2d R_world_robot = T_world_robot.rotation();
   for (int i = 0; i < c.beams; ++i) {
     if (c.dropout_prob > 0.0 && uniform_(rng_) < c.dropout_prob) continue;
-    double angle = T_world_robot.theta + angles_.angle_min_rad + i * angles_.angle_increment_rad;
-    if (sigma_bearing_rad > 0.0) angle += sigma_bearing_rad * normal_(rng_);
-    const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
+    Eigen::Vector2d dir;
+    if (sigma_bearing_rad > 0.0) {
+      const double angle = T_world_robot.theta + angles_.angle_min_rad + i * angles_.angle_increment_rad +
+                           sigma_bearing_rad * normal_(rng_);
+      dir = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    } else {
+      dir = R_world_robot * beam_dirs_[i];
+    }
     const double range = CastRay(scene, origin, dir, c.range_max_m);
     if (range == kNoHit || range < c.range_min_m) continue;
     double measured = range;

@@ -4,6 +4,7 @@
 // dropouts and hits closer than range_min_m are reported invalid at range_max_m.
 #include <cstdint>
 #include <random>
+#include <vector>
 
 #include "core/sensors.hpp"
 #include "core/stream.hpp"
@@ -27,6 +28,7 @@ class LidarSensor {
  private:
   LidarConfig config_;
   ScanAngles angles_;
+  std::vector<Eigen::Vector2d> beam_dirs_;  ///< unit beam directions in the robot frame
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
   std::uniform_real_distribution<double> uniform_{0.0, 1.0};

@@ -5,23 +5,6 @@
 
 namespace slambox {
 
-double RaySegmentRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m,
-                       const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  // b2EdgeShape::RayCast: intersect with the segment's line along its normal n = (e.y, -e.x),
-  // then check that the hit lies between the end points (0 <= s <= 1).
-  const Eigen::Vector2d e = b - a;
-  const double rr = e.squaredNorm();
-  if (rr == 0.0) return kNoHit;
-  const Eigen::Vector2d n(e.y(), -e.x());
-  const double denominator = n.dot(d);
-  if (denominator == 0.0) return kNoHit;
-  const double t = n.dot(a - o) / denominator;
-  if (t < 0.0 || t > max_range_m) return kNoHit;
-  const double s = (o + t * d - a).dot(e) / rr;
-  if (s < 0.0 || s > 1.0) return kNoHit;
-  return t;
-}
-
 double RayCircleRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m,
                       const Eigen::Vector2d& center, double radius_m) {
   // |o + t d - c|^2 = r^2 with |d| = 1: t = -(c' + sqrt(c'^2 - b)), c' = s.d, b = s.s - r^2.
@@ -63,6 +46,14 @@ double RayMoversRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double
                       const std::vector<MoverShape>& movers) {
   double best = kNoHit;
   for (const MoverShape& m : movers) {
+    // Cheap rejection: the ray passes outside the mover's bounding circle or behind it.
+    const Eigen::Vector2d to_center = m.T_world_mover.translation() - o;
+    const double bound_sq = m.is_box ? 0.25 * m.box_size_m.squaredNorm() : m.radius_m * m.radius_m;
+    const double along = to_center.dot(d);
+    if (to_center.squaredNorm() - along * along > bound_sq * (1.0 + 1e-9) ||
+        (along < 0.0 && to_center.squaredNorm() > bound_sq)) {
+      continue;
+    }
     double t;
     if (m.is_box) {
       const SE2 T_mover_world = m.T_world_mover.inverse();

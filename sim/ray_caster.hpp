@@ -16,9 +16,30 @@ namespace slambox {
 
 inline constexpr double kNoHit = std::numeric_limits<double>::infinity();
 
+/// A segment a -> a + e with rr = |e|^2, precomputed for casting.
+struct SegmentRay {
+  double ax, ay, ex, ey, rr;
+};
+inline SegmentRay MakeSegmentRay(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const double ex = b.x() - a.x(), ey = b.y() - a.y();
+  return {a.x(), a.y(), ex, ey, ex * ex + ey * ey};
+}
+/// b2EdgeShape::RayCast in double: intersect with the segment's line along its normal
+/// n = (e.y, -e.x), then check that the hit lies between the end points (0 <= s <= 1).
+inline double RaySegmentRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m,
+                              const SegmentRay& g) {
+  const double denominator = g.ey * d.x() - g.ex * d.y();
+  if (denominator == 0.0 || g.rr == 0.0) return std::numeric_limits<double>::infinity();
+  const double t = (g.ey * (g.ax - o.x()) - g.ex * (g.ay - o.y())) / denominator;
+  if (!(t >= 0.0 && t <= max_range_m)) return std::numeric_limits<double>::infinity();
+  const double s_rr = (o.x() + t * d.x() - g.ax) * g.ex + (o.y() + t * d.y() - g.ay) * g.ey;  // s |e|^2
+  return (s_rr < 0.0 || s_rr > g.rr) ? std::numeric_limits<double>::infinity() : t;
+}
 /// Range along the unit direction `dir` to the segment, or kNoHit beyond max_range_m.
-double RaySegmentRange(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, double max_range_m,
-                       const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+inline double RaySegmentRange(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, double max_range_m,
+                              const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return RaySegmentRange(origin, dir, max_range_m, MakeSegmentRay(a, b));
+}
 /// Range to the entry point of the circle, or kNoHit (also when the origin is inside).
 double RayCircleRange(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, double max_range_m,
                       const Eigen::Vector2d& center, double radius_m);
@@ -47,7 +68,7 @@ double RayStaticRangeBruteForce(const Eigen::Vector2d& origin, const Eigen::Vect
 class StaticGeometryIndex {
  public:
   /// cell_m: grid cell edge [m]; grown if the grid would exceed ~4M cells.
-  explicit StaticGeometryIndex(StaticGeometry geometry, double cell_m = 1.0);
+  explicit StaticGeometryIndex(StaticGeometry geometry, double cell_m = 2.0);
   /// Same result as RayStaticRangeBruteForce.
   double Cast(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, double max_range_m) const;
   const StaticGeometry& geometry() const { return geometry_; }
@@ -55,6 +76,7 @@ class StaticGeometryIndex {
  private:
   double TestItem(int item, const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, double max_range_m) const;
   StaticGeometry geometry_;
+  std::vector<SegmentRay> segment_rays_;  ///< geometry_.segments, precomputed
   Eigen::Vector2d lo_ = Eigen::Vector2d::Zero();
   double cell_m_ = 1.0;
   int nx_ = 0, ny_ = 0;

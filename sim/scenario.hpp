@@ -48,6 +48,7 @@ struct PoseSpec {
 struct KidnapSpec {
   double at_s = 0.0;
   PoseSpec to;
+  int line = 0;  ///< line in the source file, for errors
 };
 
 struct RobotSpec {
@@ -87,6 +88,11 @@ std::vector<BuiltinScenario> BuiltinScenarios();
 /// ("dotted.key=value", value parsed as YAML) and validates everything. Throws
 /// InputError naming file, line and the fix.
 Scenario LoadScenario(const std::string& name_or_path, const std::vector<std::string>& overrides = {});
+
+/// As LoadScenario, from YAML text (e.g. a stream header's scenario_yaml); `source`
+/// names it in errors.
+Scenario LoadScenarioText(const std::string& yaml, const std::string& source,
+                          const std::vector<std::string>& overrides = {});
 
 /// The scenario as YAML with every default filled in (`slambox scenario show`).
 /// LoadScenario of this text gives back an equal Scenario.

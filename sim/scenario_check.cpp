@@ -11,7 +11,7 @@
 #include "core/error.hpp"
 #include "sim/scenario_yaml.hpp"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 namespace {
 
 using Vec = Eigen::Vector2d;
@@ -141,7 +141,7 @@ void CheckPose(const Scenario& s, const std::vector<Obstacle>& obstacles, const 
 void CheckScenarioGeometry(const Scenario& s) {
   const std::vector<Obstacle> obstacles = StaticObstacles(s);
   CheckPose(s, obstacles, s.robot.start, s.robot.start_line, "robot start", "robot.start");
-  if (s.robot.kidnap) CheckPose(s, obstacles, s.robot.kidnap->to, s.robot.start_line, "kidnap target", "robot.kidnap.to");
+  if (s.robot.kidnap) CheckPose(s, obstacles, s.robot.kidnap->to, s.robot.kidnap->line, "kidnap target", "robot.kidnap.to");
 
   // Legs driven: start -> w0 -> w1 ... -> wn, then wn -> w0 for each further lap.
   const auto& path = s.robot.path;
@@ -177,4 +177,4 @@ void CheckScenarioGeometry(const Scenario& s) {
   }
 }
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail

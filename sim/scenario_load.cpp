@@ -8,6 +8,7 @@
 #include "sim/scenario_yaml.hpp"
 
 namespace slambox {
+using namespace scenario_detail;
 namespace {
 
 std::string BuiltinNames() {
@@ -47,6 +48,12 @@ std::vector<BuiltinScenario> BuiltinScenarios() {
 
 Scenario LoadScenario(const std::string& name_or_path, const std::vector<std::string>& overrides) {
   const auto [text, file] = ReadScenarioText(name_or_path);
+  Scenario s = LoadScenarioText(text, file, overrides);
+  if (s.name.empty()) s.name = std::filesystem::path(name_or_path).stem().string();
+  return s;
+}
+
+Scenario LoadScenarioText(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
   YamlSource src{file, {}};
   YAML::Node root;
   try {
@@ -57,7 +64,6 @@ Scenario LoadScenario(const std::string& name_or_path, const std::vector<std::st
   }
   ApplyOverrides(root, overrides, src);
   Scenario s = ParseScenario(root, src);
-  if (s.name.empty()) s.name = std::filesystem::path(name_or_path).stem().string();
   CheckScenarioGeometry(s);
   return s;
 }

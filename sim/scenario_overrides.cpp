@@ -5,7 +5,7 @@
 #include "core/error.hpp"
 #include "sim/scenario_yaml.hpp"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 namespace {
 
 std::vector<std::string> SplitDots(const std::string& key) {
@@ -105,4 +105,4 @@ void ApplyOverrides(YAML::Node& root, const std::vector<std::string>& overrides,
   for (const auto& text : overrides) ApplyOne(root, text, src);
 }
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail

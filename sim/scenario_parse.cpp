@@ -4,7 +4,7 @@
 
 #include "sim/scenario_yaml.hpp"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 namespace {
 
 std::string Item(const std::string& list, std::size_t i) { return list + "[" + std::to_string(i) + "]"; }
@@ -133,6 +133,7 @@ RobotSpec ParseRobot(const YamlSource& src, const YAML::Node& n) {
     const YAML::Node k = n["kidnap"];
     CheckMap(src, k, "robot.kidnap");
     KidnapSpec kidnap;
+    kidnap.line = LineOf(src, k);
     kidnap.at_s = ReadDouble(src, Required(src, k, "robot.kidnap", "at_s", "at_s: 60"), "robot.kidnap.at_s", AtLeast(0));
     kidnap.to = ParsePose(src, Required(src, k, "robot.kidnap", "to", "to: {x: 5, y: 5, theta_deg: 90}"),
                           "robot.kidnap.to");
@@ -174,4 +175,4 @@ Scenario ParseScenario(const YAML::Node& root, const YamlSource& src) {
   return s;
 }
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail

@@ -2,7 +2,7 @@
 // block takes the defaults of core/sensors.hpp for every key it does not give.
 #include "sim/scenario_yaml.hpp"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 namespace {
 
 const Range kProbability = Between(0.0, 1.0);
@@ -78,4 +78,4 @@ SensorSuite ParseSensors(const YAML::Node& node, const YamlSource& src) {
   return s;
 }
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail

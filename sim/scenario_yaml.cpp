@@ -1,4 +1,5 @@
 // The schema's key table and typed reads of YAML nodes with file:line errors.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -6,7 +7,7 @@
 #include "core/error.hpp"
 #include "sim/scenario_yaml.hpp"
 
-namespace slambox {
+namespace slambox::scenario_detail {
 
 const std::vector<std::string>* ScenarioKeysAt(const std::string& path) {
   static const std::map<std::string, std::vector<std::string>> kKeys = {
@@ -103,8 +104,12 @@ void CheckMap(const YamlSource& src, const YAML::Node& node, const std::string& 
   const std::vector<std::string>* keys = ScenarioKeysAt(path);
   if (!node.IsMap())
     Fail(src, node, label + " must be a mapping of keys", "write `key: value` lines; valid keys: " + JoinKeys(*keys));
+  std::vector<std::string> seen;
   for (const auto& it : node) {
     const std::string key = it.first.Scalar();
+    if (std::find(seen.begin(), seen.end(), key) != seen.end())
+      Fail(src, it.first, "duplicate key '" + key + "' in " + label, "keep one of them (YAML uses only the first)");
+    seen.push_back(key);
     bool known = false;
     for (const auto& k : *keys) known = known || k == key;
     if (!known)
@@ -165,7 +170,9 @@ Eigen::Vector2d ReadPoint(const YamlSource& src, const YAML::Node& value, const 
 std::vector<Eigen::Vector2d> ReadPoints(const YamlSource& src, const YAML::Node& value, const std::string& key,
                                         std::size_t min_count) {
   if (!value.IsSequence() || value.size() < min_count)
-    Fail(src, value, key + " must be a list of at least " + std::to_string(min_count) + " points",
+    Fail(src, value,
+         key + " must be a list of " + (min_count == 1 ? std::string("one or more points")
+                                                       : "at least " + std::to_string(min_count) + " points"),
          "write it as [[x, y], [x, y], ...]");
   std::vector<Eigen::Vector2d> points;
   for (std::size_t i = 0; i < value.size(); ++i)
@@ -195,4 +202,4 @@ bool GetBool(const YamlSource& src, const YAML::Node& map, const std::string& pa
   return v.IsDefined() ? ReadBool(src, v, Dotted(path, key)) : fallback;
 }
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail

@@ -9,7 +9,8 @@
 
 #include "sim/scenario.hpp"
 
-namespace slambox {
+// Internal names live in their own namespace so they never collide with other layers.
+namespace slambox::scenario_detail {
 
 /// Where the tree came from: the file (or "builtin:NAME") and the `--set` values that
 /// were grafted into it (each value node with "FILE (--set key=value)", used as the
@@ -78,4 +79,4 @@ struct EmbeddedScenario {
 };
 const std::vector<EmbeddedScenario>& EmbeddedScenarios();
 
-}  // namespace slambox
+}  // namespace slambox::scenario_detail

@@ -28,6 +28,7 @@ bool SegmentTouchesBox(const Segment& s, const Eigen::Vector2d& lo, const Eigen:
 
 StaticGeometryIndex::StaticGeometryIndex(StaticGeometry geometry, double cell_m)
     : geometry_(std::move(geometry)), cell_m_(cell_m) {
+  for (const Segment& s : geometry_.segments) segment_rays_.push_back(MakeSegmentRay(s.a, s.b));
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::Vector2d lo(inf, inf), hi(-inf, -inf);
   for (const Segment& s : geometry_.segments) {
@@ -88,50 +89,57 @@ StaticGeometryIndex::StaticGeometryIndex(StaticGeometry geometry, double cell_m)
 double StaticGeometryIndex::TestItem(int item, const Eigen::Vector2d& o, const Eigen::Vector2d& d,
                                      double max_range_m) const {
   const int num_segments = static_cast<int>(geometry_.segments.size());
-  if (item < num_segments) {
-    const Segment& s = geometry_.segments[item];
-    return RaySegmentRange(o, d, max_range_m, s.a, s.b);
-  }
+  if (item < num_segments) return RaySegmentRange(o, d, max_range_m, segment_rays_[item]);
   const Circle& c = geometry_.circles[item - num_segments];
   return RayCircleRange(o, d, max_range_m, c.center, c.radius_m);
 }
 
 double StaticGeometryIndex::Cast(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m) const {
   if (nx_ == 0) return kNoHit;
-  // Clip the ray [0, max_range_m] to the grid's box (slab test).
   const Eigen::Vector2d hi = lo_ + cell_m_ * Eigen::Vector2d(nx_, ny_);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double inv_x = 1.0 / d.x(), inv_y = 1.0 / d.y();  // +-inf for an axis-parallel ray
   double t0 = 0.0, t1 = max_range_m;
-  for (int a = 0; a < 2; ++a) {
-    if (d[a] == 0.0) {
-      if (o[a] < lo_[a] || o[a] > hi[a]) return kNoHit;
-      continue;
+  if (o.x() < lo_.x() || o.x() > hi.x() || o.y() < lo_.y() || o.y() > hi.y()) {
+    // Origin outside the grid: clip the ray [0, max_range_m] to the grid's box (slab test).
+    for (int a = 0; a < 2; ++a) {
+      if (d[a] == 0.0) {
+        if (o[a] < lo_[a] || o[a] > hi[a]) return kNoHit;
+        continue;
+      }
+      const double inv = a == 0 ? inv_x : inv_y;
+      const double ta = (lo_[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
+      t0 = std::max(t0, std::min(ta, tb));
+      t1 = std::min(t1, std::max(ta, tb));
     }
-    const double ta = (lo_[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
+    if (t0 > t1) return kNoHit;
   }
-  if (t0 > t1) return kNoHit;
-  const Eigen::Vector2d p = o + t0 * d;
-  int ix = std::clamp(static_cast<int>(std::floor((p.x() - lo_.x()) / cell_m_)), 0, nx_ - 1);
-  int iy = std::clamp(static_cast<int>(std::floor((p.y() - lo_.y()) / cell_m_)), 0, ny_ - 1);
+  const double inv_cell = 1.0 / cell_m_;
+  int ix = std::clamp(static_cast<int>(std::floor((o.x() + t0 * d.x() - lo_.x()) * inv_cell)), 0, nx_ - 1);
+  int iy = std::clamp(static_cast<int>(std::floor((o.y() + t0 * d.y() - lo_.y()) * inv_cell)), 0, ny_ - 1);
   const int step_x = d.x() > 0 ? 1 : -1, step_y = d.y() > 0 ? 1 : -1;
-  // Ray parameter where it leaves the current column / row (computed afresh, not accumulated).
-  auto exit_x = [&](int i) { return d.x() == 0.0 ? kNoHit : (lo_.x() + (i + (d.x() > 0)) * cell_m_ - o.x()) / d.x(); };
-  auto exit_y = [&](int i) { return d.y() == 0.0 ? kNoHit : (lo_.y() + (i + (d.y() > 0)) * cell_m_ - o.y()) / d.y(); };
+  // Ray parameter where it leaves the current column / row, and its growth per cell.
+  double t_max_x = d.x() == 0.0 ? inf : (lo_.x() + (ix + (d.x() > 0)) * cell_m_ - o.x()) * inv_x;
+  double t_max_y = d.y() == 0.0 ? inf : (lo_.y() + (iy + (d.y() > 0)) * cell_m_ - o.y()) * inv_y;
+  const double t_delta_x = d.x() == 0.0 ? inf : cell_m_ * std::abs(inv_x);
+  const double t_delta_y = d.y() == 0.0 ? inf : cell_m_ * std::abs(inv_y);
   double best = kNoHit;
   while (true) {
     const size_t c = static_cast<size_t>(iy) * nx_ + ix;
-    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) best = std::min(best, TestItem(items_[k], o, d, max_range_m));
-    const double tx = exit_x(ix), ty = exit_y(iy);
-    const double t_exit = std::min(tx, ty);
-    // Hits in later cells lie at t >= t_exit; the margin covers rounding of t_exit.
-    if (best < t_exit - 1e-9 * (1.0 + t_exit) || t_exit > t1) break;
-    if (tx < ty) {
+    // Clipping the range to the best hit so far (as b2World::RayCast does) leaves the minimum unchanged.
+    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+      best = std::min(best, TestItem(items_[k], o, d, std::min(best, max_range_m)));
+    const double t_exit = std::min(t_max_x, t_max_y);
+    // Hits in later cells lie at t >= t_exit; the margin covers the rounding of t_exit.
+    if (t_exit > t1 || best < t_exit - 1e-9 * (1.0 + t_exit)) break;
+    if (t_max_x < t_max_y) {
       ix += step_x;
       if (ix < 0 || ix >= nx_) break;
+      t_max_x += t_delta_x;
     } else {
       iy += step_y;
       if (iy < 0 || iy >= ny_) break;
+      t_max_y += t_delta_y;
     }
   }
   return best;

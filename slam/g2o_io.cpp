@@ -1,6 +1,7 @@
 #include "slam/g2o_io.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -26,12 +28,13 @@ struct RawEdge {
   int line = 0;
 };
 
-const char* kTagsFix = "use VERTEX_SE2, EDGE_SE2, FIX (g2o) or VERTEX2, EDGE2 (TORO); '#' starts a comment";
+const char* kTagsFix =
+    "use VERTEX_SE2, EDGE_SE2, FIX (g2o), VERTEX2, EDGE2 (TORO) or ODOMETRY (iSAM); '#' starts a comment";
 
 class LineParser {
  public:
-  LineParser(const std::string& file, int line, const std::string& tag, std::vector<std::string> tokens)
-      : file_(file), line_(line), tag_(tag), tokens_(std::move(tokens)) {}
+  LineParser(const std::string& file, int line, const std::vector<std::string>& tokens)
+      : file_(file), line_(line), tag_(tokens[0]), tokens_(tokens) {}
 
   void ExpectCount(size_t count, const std::string& form) const {
     if (tokens_.size() != count)
@@ -67,14 +70,33 @@ class LineParser {
  private:
   const std::string& file_;
   int line_;
-  std::string tag_;
-  std::vector<std::string> tokens_;
+  const std::string& tag_;
+  const std::vector<std::string>& tokens_;
 };
 
-// Information over (dx, dy, dtheta) from the file's six values in g2o or TORO order.
-Eigen::Matrix3d Information(const LineParser& p, bool toro) {
+void SplitWords(std::string_view line, std::vector<std::string>* words) {
+  words->clear();
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) words->emplace_back(line.substr(i, j - i));
+    i = j;
+  }
+}
+
+enum class EdgeFormat { kG2o, kToro, kIsam };
+
+// Information over (dx, dy, dtheta) from the file's six values in g2o, TORO or iSAM order.
+Eigen::Matrix3d Information(const LineParser& p, EdgeFormat format) {
   double xx, xy, xt, yy, yt, tt;
-  if (toro) {  // inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr
+  if (format == EdgeFormat::kIsam) {  // sxx sxy sxt syy syt stt: square root R, Omega = R^T R
+    Eigen::Matrix3d R;
+    R << p.Number(6), p.Number(7), p.Number(8), 0.0, p.Number(9), p.Number(10), 0.0, 0.0, p.Number(11);
+    return R.transpose() * R;
+  }
+  if (format == EdgeFormat::kToro) {  // inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr
     xx = p.Number(6), xy = p.Number(7), yy = p.Number(8), tt = p.Number(9), xt = p.Number(10), yt = p.Number(11);
   } else {  // I11 I12 I13 I22 I23 I33
     xx = p.Number(6), xy = p.Number(7), xt = p.Number(8), yy = p.Number(9), yt = p.Number(10), tt = p.Number(11);
@@ -90,17 +112,19 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
   std::map<long long, RawVertex> vertices;
   std::vector<RawEdge> edges;
   std::vector<std::pair<long long, int>> fixed_ids;
-  std::istringstream in(text);
-  std::string line_text;
+  // iSAM files (ODOMETRY lines) give square-root information, also on their EDGE2 lines.
+  const bool isam = text.rfind("ODOMETRY", 0) == 0 || text.find("\nODOMETRY") != std::string::npos;
   int line = 0;
-  while (std::getline(in, line_text)) {
+  std::vector<std::string> tokens;
+  for (size_t pos = 0; pos < text.size();) {
     ++line;
-    std::istringstream words(line_text);
-    std::vector<std::string> tokens;
-    for (std::string w; words >> w;) tokens.push_back(w);
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    SplitWords(std::string_view(text).substr(pos, end - pos), &tokens);
+    pos = end + 1;
     if (tokens.empty() || tokens[0][0] == '#') continue;
     const std::string& tag = tokens[0];
-    LineParser p(name, line, tag, tokens);
+    LineParser p(name, line, tokens);
     if (tag == "VERTEX_SE2" || tag == "VERTEX2") {
       p.ExpectCount(5, tag + " id x y theta");
       const long long id = p.Id(1);
@@ -109,10 +133,14 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
                                          std::to_string(vertices[id].line) + ")",
                          "give each vertex one line");
       vertices[id] = {SE2(p.Number(2), p.Number(3), p.Number(4)), line};
-    } else if (tag == "EDGE_SE2" || tag == "EDGE2") {
-      const bool toro = tag == "EDGE2";
-      p.ExpectCount(12, toro ? "EDGE2 i j dx dy dtheta inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr"
-                             : "EDGE_SE2 i j dx dy dtheta I11 I12 I13 I22 I23 I33");
+    } else if (tag == "EDGE_SE2" || tag == "EDGE2" || tag == "ODOMETRY") {
+      const EdgeFormat format = tag == "EDGE_SE2"              ? EdgeFormat::kG2o
+                                : (tag == "ODOMETRY" || isam) ? EdgeFormat::kIsam
+                                                              : EdgeFormat::kToro;
+      const std::string values = format == EdgeFormat::kG2o    ? "I11 I12 I13 I22 I23 I33"
+                                 : format == EdgeFormat::kToro ? "inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr"
+                                                               : "sxx sxy sxt syy syt stt";
+      p.ExpectCount(12, tag + " i j dx dy dtheta " + values);
       RawEdge e;
       e.from = p.Id(1);
       e.to = p.Id(2);
@@ -121,13 +149,13 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
         throw InputError(name, line, "edge joins vertex " + std::to_string(e.from) + " to itself",
                          "remove the line or fix its ids");
       e.edge.T_from_to = SE2(p.Number(3), p.Number(4), p.Number(5));
-      e.edge.information = Information(p, toro);
+      e.edge.information = Information(p, format);
       Eigen::Matrix3d U;
       if (!SqrtInformation(e.edge.information, &U))
         throw InputError(name, line, "edge information matrix is not positive definite",
-                         "give the upper triangle of a positive definite information matrix (" +
-                             std::string(toro ? "inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr" : "I11 I12 I13 I22 I23 I33") +
-                             ")");
+                         format == EdgeFormat::kIsam
+                             ? "give an upper-triangular square-root information (" + values + ") with a nonzero diagonal"
+                             : "give the upper triangle of a positive definite information matrix (" + values + ")");
       edges.push_back(e);
     } else if (tag == "FIX") {
       if (tokens.size() < 2) throw InputError(name, line, "FIX names no vertex", "write 'FIX id'");

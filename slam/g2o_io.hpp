@@ -2,7 +2,9 @@
 // Reading and writing 2D pose graphs: g2o (`VERTEX_SE2 id x y theta`,
 // `EDGE_SE2 i j dx dy dtheta I11 I12 I13 I22 I23 I33` with the upper triangle of the
 // information matrix, `FIX id...`) and TORO (`VERTEX2`, `EDGE2 i j dx dy dtheta inf_ff
-// inf_fs inf_ss inf_rr inf_fr inf_sr`). Lines starting with '#' are comments.
+// inf_fs inf_ss inf_rr inf_fr inf_sr`) and iSAM (`ODOMETRY i j dx dy dtheta sxx sxy sxt
+// syy syt stt`, the upper-triangular square root R of the information, Omega = R^T R; in a
+// file with ODOMETRY lines EDGE2 lines are read the same way). '#' starts a comment line.
 #include <string>
 #include <vector>
 

@@ -9,9 +9,12 @@
 #include <ceres/ceres.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 
 #include "core/error.hpp"
+#include "slam/angle_manifold.hpp"
+#include "slam/dcs_loss.hpp"
 #include "slam/pose_graph_cost.hpp"
 
 namespace slambox {
@@ -54,8 +57,14 @@ void ValidateGraph(const PoseGraph& graph, const PoseGraphSolveOptions& options,
     throw InputError("", 0, "anchor " + std::to_string(graph.anchor) + " is not a pose index (0.." +
                                 std::to_string(n - 1) + ")",
                      "set PoseGraph::anchor to an existing pose");
-  if (!(options.kernel_scale > 0.0))
+  if (!(options.kernel_scale > 0.0) || !std::isfinite(options.kernel_scale))
     throw InputError("", 0, "robust kernel scale must be positive", "set kernel_scale > 0");
+  if (options.max_iterations < 0 || options.num_threads < 1)
+    throw InputError("", 0, "max_iterations must be >= 0 and num_threads >= 1", "fix PoseGraphSolveOptions");
+  for (int i = 0; i < n; ++i)
+    if (!graph.poses[i].vector().allFinite())
+      throw InputError("", 0, "pose " + std::to_string(i) + " of the initial guess is not finite",
+                       "give finite initial poses (or initialize with SpanningTreeInitialization)");
   sqrt_informations->resize(graph.edges.size());
   for (size_t k = 0; k < graph.edges.size(); ++k) {
     const PoseGraphEdge& edge = graph.edges[k];

@@ -36,11 +36,13 @@ struct PoseGraphSolveOptions {
 struct PoseGraphSolveResult {
   double chi2_initial = 0.0;  ///< at the input poses, no robust kernel
   double chi2_final = 0.0;    ///< at the solution, no robust kernel
-  int iterations = 0;
-  double time_s = 0.0;
+  int iterations = 0;          ///< Levenberg-Marquardt steps taken (successful + rejected)
+  double time_s = 0.0;         ///< [s] wall time of SolvePoseGraph (problem set-up + solve)
   std::string termination;  ///< Ceres' termination type ("CONVERGENCE", "NO_CONVERGENCE", ...)
   bool usable = false;      ///< Ceres' Summary::IsSolutionUsable()
-  /// Per edge: the weight the robust kernel gave it at the solution (1 = full trust).
+  /// Per edge: the weight the robust kernel gave it at the solution, rho'(e^T Omega e)
+  /// (the IRLS weight on its chi2; DCS: k^2; 1 = full trust, ~0 = rejected; 1 for
+  /// odometry edges and without a kernel).
   std::vector<double> edge_weights;
 };
 

@@ -21,7 +21,7 @@ struct Result {
   std::string output;  // stdout + stderr
 };
 
-Result Run(const std::string& args) {
+Result Slambox(const std::string& args) {
   const std::string log = (fs::temp_directory_path() / ("slambox_run_log_" + std::to_string(getpid()))).string();
   const int status = std::system((kBinary + " " + args + " > " + log + " 2>&1").c_str());
   std::ifstream in(log);
@@ -43,7 +43,7 @@ fs::path TempDir(const std::string& name) {
 
 TEST(Run, WritesTheRunFolderOfTheDesign) {
   const fs::path dir = TempDir("loop");
-  const Result r = Run("run loop --algo odometry --set duration_s=30 --no-figures -o " + dir.string());
+  const Result r = Slambox("run loop --algo odometry --set duration_s=30 --no-figures -o " + dir.string());
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* f : {"metrics.json", "groundtruth.tum", "odometry.tum", "world.json", "estimates/odometry.json",
                         "series/odometry.json"})
@@ -70,9 +70,9 @@ TEST(Run, WritesTheRunFolderOfTheDesign) {
 TEST(Run, SameSeedSameAccuracyDifferentSeedDifferent) {
   const fs::path a = TempDir("a"), b = TempDir("b"), c = TempDir("c");
   const std::string common = "run landmarks --algo odometry --set duration_s=20 --no-figures ";
-  ASSERT_EQ(Run(common + "--seed 3 -o " + a.string()).code, 0);
-  ASSERT_EQ(Run(common + "--seed 3 -o " + b.string()).code, 0);
-  ASSERT_EQ(Run(common + "--seed 4 -o " + c.string()).code, 0);
+  ASSERT_EQ(Slambox(common + "--seed 3 -o " + a.string()).code, 0);
+  ASSERT_EQ(Slambox(common + "--seed 3 -o " + b.string()).code, 0);
+  ASSERT_EQ(Slambox(common + "--seed 4 -o " + c.string()).code, 0);
   auto ate = [](const fs::path& d) { return ReadJson(d / "metrics.json")["algorithms"]["odometry"]["ate_rmse_m"].get<double>(); };
   EXPECT_EQ(ate(a), ate(b));
   EXPECT_NE(ate(a), ate(c));
@@ -88,12 +88,12 @@ TEST(Run, StreamFileReplaysLikeTheScenario) {
   const fs::path dir = TempDir("stream");
   fs::create_directories(dir);
   const std::string stream = (dir / "s.stream").string();
-  ASSERT_EQ(Run("simulate landmarks --seed 5 --set duration_s=15 -o " + stream).code, 0);
-  ASSERT_EQ(Run("run " + stream + " --algo odometry --no-figures -o " + (dir / "from_stream").string()).code, 0);
-  ASSERT_EQ(Run("run landmarks --seed 5 --set duration_s=15 --algo odometry --no-figures -o " + (dir / "direct").string()).code, 0);
+  ASSERT_EQ(Slambox("simulate landmarks --seed 5 --set duration_s=15 -o " + stream).code, 0);
+  ASSERT_EQ(Slambox("run " + stream + " --algo odometry --no-figures -o " + (dir / "from_stream").string()).code, 0);
+  ASSERT_EQ(Slambox("run landmarks --seed 5 --set duration_s=15 --algo odometry --no-figures -o " + (dir / "direct").string()).code, 0);
   auto ate = [](const fs::path& d) { return ReadJson(d / "metrics.json")["algorithms"]["odometry"]["ate_rmse_m"].get<double>(); };
   EXPECT_EQ(ate(dir / "from_stream"), ate(dir / "direct"));
-  const Result r = Run("run " + stream + " --seed 2 --no-figures -o " + (dir / "x").string());
+  const Result r = Slambox("run " + stream + " --seed 2 --no-figures -o " + (dir / "x").string());
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("do not apply to a recorded stream"), std::string::npos) << r.output;
   fs::remove_all(dir);
@@ -111,7 +111,7 @@ TEST(Run, BadInputGivesAClearErrorAndNoResults) {
       {"run loop --set justakey -o " + dir.string(), "expected KEY=VALUE"},
   };
   for (const auto& c : cases) {
-    const Result r = Run(c.args);
+    const Result r = Slambox(c.args);
     EXPECT_NE(r.code, 0) << c.args;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find("fix:"), std::string::npos) << c.args << "\n" << r.output;

@@ -1,6 +1,7 @@
 // Every schema error is an InputError naming the file, the line and a fix.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -144,6 +145,17 @@ TEST(ScenarioErrors, RequiredKeysAndVersion) {
   ExpectInputError({With(10, "  movers:\n    - {path: [[1, 5], [3, 5]]}"), 11, "exactly one shape"});
 }
 
+TEST(ScenarioErrors, DuplicateKey) {
+  ExpectInputError({With(14, "  laps: 1\n  laps: 2"), 15, "duplicate key 'laps' in robot"}, "keep one");
+  ExpectInputError({With(17, "  lidar: {beams: 180, beams: 90}"), 17, "duplicate key 'beams' in sensors.lidar"});
+}
+
+TEST(ScenarioErrors, MissingRobotOrEmptyPath) {
+  ExpectInputError({"version: 1\nname: x\n", 1, "missing required key 'robot'"}, "robot:");
+  ExpectInputError({With(13, "  path: []"), 13, "robot.path must be a list of one or more points"}, "[[x, y]");
+  ExpectInputError({With(13, "  path: [[9, 1], [9, x]]"), 13, "robot.path[1][1] must be a number, got 'x'"});
+}
+
 TEST(ScenarioErrors, DuplicateLandmarkId) {
   ExpectInputError({With(10, "    - {pos: [3, 8], id: 0}"), 10, "duplicate landmark id 0"}, "distinct id");
 }
@@ -154,7 +166,7 @@ TEST(ScenarioErrors, RobotStartInsideGeometry) {
   ExpectInputError({With(12, "  start: {x: 5.7, y: 5}"), 12, "the box at line 6"});  // outside, within radius
   ExpectInputError({With(12, "  start: {x: 8, y: 8.1}"), 12, "the circle at line 7"});
   ExpectInputError({With(12, "  start: {x: 2, y: 8.2}"), 12, "the landmark post 0 at line 9"});
-  ExpectInputError({With(14, "  kidnap: {at_s: 5, to: {x: 5, y: 5}}"), 12, "kidnap target (5, 5) is inside"});
+  ExpectInputError({With(14, "  laps: 1\n  kidnap: {at_s: 5, to: {x: 5, y: 5}}"), 15, "kidnap target (5, 5) is inside"});
 }
 
 TEST(ScenarioErrors, UnreachableWaypoint) {
@@ -170,7 +182,9 @@ TEST(ScenarioErrors, UnreachableWaypoint) {
   const std::string closing = "  path: [[1, 9], [9, 9], [9, 1]]";
   testing::TempDir dir;
   EXPECT_NO_THROW(LoadScenario(dir.Write("one_lap.yaml", With(13, closing))));
-  ExpectInputError({With(13, closing + "\n  laps: 2"), 13, "waypoint 0 (1, 9) unreachable: the straight drive from (9, 1)"});
+  std::string two_laps = With(13, closing);
+  two_laps.replace(two_laps.find("laps: 1"), 7, "laps: 2");
+  ExpectInputError({two_laps, 13, "waypoint 0 (1, 9) unreachable: the straight drive from (9, 1)"});
 }
 
 TEST(ScenarioErrors, MoverPathIntoWall) {
@@ -196,6 +210,46 @@ TEST(ScenarioErrors, NoSuchScenario) {
     EXPECT_NE(std::string(e.what()).find("no such scenario file or built-in"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("loop, maze"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace slambox
+
+namespace slambox {
+namespace {
+
+// Robustness: random edits of valid scenario text either load or throw InputError;
+// no other exception escapes (yaml-cpp's own exceptions are all translated).
+TEST(ScenarioErrors, RandomEditsGiveInputErrorsOnly) {
+  std::mt19937_64 rng(42);
+  const std::string alphabet = " :-[]{},.0a#\n\t\"'&*!|>";
+  int errors = 0, loaded = 0;
+  for (const auto& b : BuiltinScenarios()) {
+    const std::string text = ScenarioToYaml(LoadScenario(b.name));
+    for (int trial = 0; trial < 60; ++trial) {
+      std::string edited = text;
+      const int edits = 1 + static_cast<int>(rng() % 3);
+      for (int e = 0; e < edits; ++e) {
+        const std::size_t at = rng() % edited.size();
+        switch (rng() % 3) {
+          case 0: edited.erase(at, 1 + rng() % 8); break;
+          case 1: edited.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
+          default: edited[at] = alphabet[rng() % alphabet.size()]; break;
+        }
+      }
+      try {
+        LoadScenarioText(edited, "edited", {});
+        ++loaded;
+      } catch (const InputError& e) {
+        ++errors;
+        EXPECT_NE(std::string(e.what()).find("fix: "), std::string::npos) << e.what();
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "non-InputError " << e.what() << " for:\n" << edited;
+      }
+    }
+  }
+  EXPECT_GT(errors, 50);  // the edits do break files; the test exercises the error paths
+  EXPECT_GT(loaded, 10);
 }
 
 }  // namespace

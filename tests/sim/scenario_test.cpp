@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "core/error.hpp"
@@ -24,6 +25,18 @@ double PathLength(const RobotSpec& r) {
   }
   for (std::size_t i = 0; i < r.path.size(); ++i) one += (r.path[(i + 1) % r.path.size()] - r.path[i]).norm();
   return total + (r.laps - 1) * one;
+}
+
+/// Points every `step_m` along the driven legs (start -> path, one lap).
+std::vector<Eigen::Vector2d> Samples(const RobotSpec& r, double step_m) {
+  std::vector<Eigen::Vector2d> out;
+  Eigen::Vector2d at(r.start.x, r.start.y);
+  for (const auto& p : r.path) {
+    const int n = std::max(1, static_cast<int>((p - at).norm() / step_m));
+    for (int k = 0; k < n; ++k) out.push_back(at + (p - at) * (static_cast<double>(k) / n));
+    at = p;
+  }
+  return out;
 }
 
 /// Lower bound on the drive time of a turn-then-drive controller: distance / v_max plus
@@ -81,8 +94,15 @@ TEST(Scenario, BuiltinsHaveTheirPromisedShape) {
   double min_x = 1e9, max_x = -1e9;
   for (const auto& p : tunnel.robot.path) min_x = std::min(min_x, p.x()), max_x = std::max(max_x, p.x());
   EXPECT_GE(max_x - min_x, 60.0);
-  // End walls (x = 0 and x = 100) beyond lidar range over most of the drive.
-  EXPECT_LT(tunnel.sensors.lidar->range_max_m, 0.5 * (max_x - min_x));
+  // The end walls (the outline's x extremes) are beyond lidar range over most of the drive.
+  const auto& outline = tunnel.walls.at(0).points;
+  double wall_lo = 1e9, wall_hi = -1e9;
+  for (const auto& p : outline) wall_lo = std::min(wall_lo, p.x()), wall_hi = std::max(wall_hi, p.x());
+  int blind = 0;
+  const auto samples = Samples(tunnel.robot, 0.5);
+  for (const auto& p : samples)
+    blind += std::min(p.x() - wall_lo, wall_hi - p.x()) > tunnel.sensors.lidar->range_max_m;
+  EXPECT_GT(blind, 0.6 * samples.size());
 
   const Scenario park = LoadScenario("landmarks");
   EXPECT_GE(park.landmarks.size(), 40u);
@@ -90,12 +110,39 @@ TEST(Scenario, BuiltinsHaveTheirPromisedShape) {
   EXPECT_FALSE(park.sensors.lidar.has_value());
   EXPECT_GE(PathLength(park.robot), 100.0);
   EXPECT_LE(PathLength(park.robot), 200.0);
+  // At least 5 posts within detector range everywhere along the path (occlusion aside).
+  for (const auto& p : Samples(park.robot, 0.5)) {
+    int in_range = 0;
+    for (const auto& l : park.landmarks) in_range += (l.pos - p).norm() <= park.sensors.landmarks->range_max_m;
+    EXPECT_GE(in_range, 5) << p.transpose();
+  }
 
   const Scenario dynamic = LoadScenario("dynamic");
   bool has_box = false, has_circle = false;
   for (const auto& m : dynamic.movers) (m.is_box ? has_box : has_circle) = true;
   EXPECT_TRUE(has_box && has_circle);
-  EXPECT_TRUE(LoadScenario("maze").sensors.lidar.has_value());
+  const Scenario maze = LoadScenario("maze");
+  EXPECT_TRUE(maze.sensors.lidar.has_value());
+  // Doors: gaps between collinear axis-aligned wall pieces, all at least 1.2 m wide.
+  std::map<std::pair<bool, double>, std::vector<std::pair<double, double>>> lines;
+  for (const auto& w : maze.walls) {
+    if (w.kind != WallSpec::Kind::kPolyline || w.points.size() != 2) continue;
+    const Eigen::Vector2d a = w.points[0], b = w.points[1];
+    const bool vertical = a.x() == b.x();
+    const double along_a = vertical ? a.y() : a.x(), along_b = vertical ? b.y() : b.x();
+    lines[{vertical, vertical ? a.x() : a.y()}].emplace_back(std::min(along_a, along_b), std::max(along_a, along_b));
+  }
+  int doors = 0;
+  for (auto& [line, pieces] : lines) {
+    std::sort(pieces.begin(), pieces.end());
+    for (std::size_t i = 0; i + 1 < pieces.size(); ++i) {
+      const double gap = pieces[i + 1].first - pieces[i].second;
+      if (gap <= 0.0) continue;
+      ++doors;
+      EXPECT_GE(gap, 1.2) << "door on line " << line.second;
+    }
+  }
+  EXPECT_GE(doors, 10);
 }
 
 TEST(Scenario, SymmetricWorldIsPointSymmetric) {
@@ -135,6 +182,21 @@ TEST(Scenario, ShowThenLoadRoundTripsExactly) {
   const Scenario b = LoadScenario(dir.Write("odd.yaml", ScenarioToYaml(a)));
   testing::ExpectSameScenario(a, b);
   EXPECT_EQ(b.robot.radius_m, 0.1 + 0.2);
+}
+
+TEST(Scenario, LoadFromTextGivesTheSameAsFromItsFile) {
+  // A stream header stores ScenarioToYaml(); LoadScenarioText reads it back.
+  const Scenario a = LoadScenario("dynamic");
+  const Scenario b = LoadScenarioText(ScenarioToYaml(a), "stream header", {"robot.laps=1"});
+  EXPECT_EQ(b.robot.laps, 1);
+  EXPECT_EQ(b.source, "stream header");
+  EXPECT_EQ(b.movers.size(), a.movers.size());
+  try {
+    LoadScenarioText("version: 3\nrobot: {path: [[1, 0]]}\n", "stream header");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("stream header:1: unsupported scenario version 3"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Scenario, ShowFillsEveryDefault) {

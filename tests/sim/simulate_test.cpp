@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/stream_io.hpp"
+#include "sim/box2d_world.hpp"
 #include "test_scenarios.hpp"
 
 namespace slambox {
@@ -75,6 +76,26 @@ TEST(Simulate, SameSeedIsBitIdenticalOtherSeedDiffers) {
   EXPECT_NE(a, c);
 }
 
+/// FNV-1a 64 of the serialized events and ground truth (the header's version and YAML
+/// text are left out: they change with releases and formatting, not with the simulation).
+std::uint64_t GoldenHash(Stream s) {
+  s.header.slambox_version.clear();
+  s.header.scenario_yaml.clear();
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : SerializeStream(s)) h = (h ^ c) * 0x100000001b3ull;
+  return h;
+}
+
+TEST(Simulate, GoldenHashOfAShortRun) {
+  Scenario sc = RoomScenario();
+  sc.duration_s = 2.0;
+  sc.sensors.lidar->sigma_bearing_deg = 0.2;
+  sc.sensors.lidar->dropout_prob = 0.05;
+  sc.sensors.landmarks->clutter_per_scan = 1.0;
+  // A deliberate change of the simulator's output updates this value; anything else is a bug.
+  EXPECT_EQ(GoldenHash(Simulate(sc, 7)), 7568188000472649817ull) << std::hex << GoldenHash(Simulate(sc, 7));
+}
+
 TEST(Simulate, DurationExtendsPastThePathAndTheRobotWaits) {
   Scenario sc = RoomScenario();
   sc.robot.laps = 1;
@@ -110,6 +131,36 @@ TEST(Simulate, UnreachableWaypointIsAnInputErrorNamingIt) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("waypoint 1 [5, 4]"), std::string::npos) << e.what();
   }
+}
+
+TEST(Movers, WalkTheirPathBackAndForthOrStop) {
+  MoverSpec m;
+  m.path = {{0, 0}, {3, 0}, {3, 4}};  // 7 m long
+  m.speed_mps = 2.0;
+  EXPECT_NEAR((MoverPositionAt(m, 1.0) - Eigen::Vector2d(2, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((MoverPositionAt(m, 2.5) - Eigen::Vector2d(3, 2)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((MoverPositionAt(m, 4.5) - Eigen::Vector2d(3, 2)).norm(), 0.0, 1e-12);  // 9 m: 2 m on the way back
+  EXPECT_NEAR((MoverPositionAt(m, 7.0) - Eigen::Vector2d(0, 0)).norm(), 0.0, 1e-12);  // back at the start
+  m.loop = false;
+  EXPECT_NEAR((MoverPositionAt(m, 4.5) - Eigen::Vector2d(3, 4)).norm(), 0.0, 1e-12);  // stays at the end
+}
+
+TEST(Movers, KinematicBodiesFollowTheirPaths) {
+  Scenario sc = RoomScenario();
+  MoverSpec cart;
+  cart.is_box = true;
+  cart.path = {{2, 3}, {8, 3}};
+  cart.speed_mps = 0.5;
+  sc.movers = {cart};
+  sc.robot.path = {{1.5, 1.5}};
+  const World world = MakeWorld(sc);
+  PhysicsWorld physics(sc, world);
+  for (int k = 1; k <= 400; ++k) physics.Step(0.01, k * 0.01);
+  const std::vector<MoverShape> movers = physics.Movers();
+  ASSERT_EQ(movers.size(), 1u);
+  EXPECT_NEAR(movers[0].T_world_mover.x, 4.0, 1e-4);
+  EXPECT_NEAR(movers[0].T_world_mover.y, 3.0, 1e-4);
+  EXPECT_TRUE(movers[0].is_box);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <tuple>
 #include <unistd.h>
 
 #include "core/error.hpp"
@@ -96,6 +97,16 @@ TEST(G2oIo, ReadsToroOrderingAndEdgesOnlyFiles) {
   EXPECT_EQ(f.graph.anchor, 0);
 }
 
+TEST(G2oIo, ReadsIsamSquareRootInformation) {
+  // R = [[2, 1, 0], [0, 3, 0.5], [0, 0, 4]] -> Omega = R^T R; EDGE2 in an iSAM file is iSAM too.
+  const PoseGraphFile f = ParsePoseGraph("ODOMETRY 0 1 1 0 0 2 1 0 3 0.5 4\nEDGE2 1 0 -1 0 0 2 1 0 3 0.5 4\n", "m.txt");
+  Eigen::Matrix3d R;
+  R << 2, 1, 0, 0, 3, 0.5, 0, 0, 4;
+  ASSERT_EQ(f.graph.edges.size(), 2u);
+  EXPECT_TRUE(f.graph.edges[0].information.isApprox(R.transpose() * R, 1e-15));
+  EXPECT_TRUE(f.graph.edges[1].information.isApprox(R.transpose() * R, 1e-15));
+}
+
 void ExpectInputError(const std::string& text, int line, const std::string& needle) {
   try {
     ParsePoseGraph(text, "bad.g2o");
@@ -132,6 +143,26 @@ TEST(G2oIo, MissingFileAndUnwritablePathFailCleanly) {
   EXPECT_ANY_THROW(WritePoseGraph(blocker + "/out.g2o", s.graph));  // parent is a file
   EXPECT_FALSE(std::filesystem::exists(blocker + "/out.g2o"));
   std::filesystem::remove_all(dir);
+}
+
+// Pose / edge counts of the public graphs as listed in the data README.
+TEST(G2oIo, ReadsThePublicGraphs) {
+  const std::vector<std::tuple<std::string, size_t, size_t, bool>> graphs = {
+      {"posegraph/intel.g2o", 1728, 2512, true},      {"posegraph/CSAIL.g2o", 1045, 1172, false},
+      {"posegraph/manhattan.g2o", 3500, 5453, false}, {"posegraph/city10000.g2o", 10000, 20687, true},
+      {"posegraph/w10000_toro.graph", 10000, 64311, true},
+      {"posegraph/manhattanOlson3500_isam.txt", 3500, 5598, false}};
+  int read = 0;
+  for (const auto& [relative, poses, edges, has_guess] : graphs) {
+    const std::string path = testing::PublicDataFile(SLAMBOX_SOURCE_DIR, relative);
+    if (path.empty()) continue;
+    const PoseGraphFile f = ReadPoseGraph(path);
+    EXPECT_EQ(f.graph.poses.size(), poses) << relative;
+    EXPECT_EQ(f.graph.edges.size(), edges) << relative;
+    EXPECT_EQ(f.has_initial_guess, has_guess) << relative;
+    ++read;
+  }
+  if (read == 0) GTEST_SKIP() << "no public pose graphs found (posegraph/ in the data folder); set SLAMBOX_DATA";
 }
 
 }  // namespace

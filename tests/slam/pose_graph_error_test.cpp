@@ -8,6 +8,8 @@
 
 #include "slam/g2o_io.hpp"
 #include "slam/pose_graph.hpp"
+#include "slam/angle_manifold.hpp"
+#include "slam/dcs_loss.hpp"
 #include "slam/pose_graph_cost.hpp"
 #include "slam/pose_graph_init.hpp"
 #include "tests/slam/pose_graph_test_support.hpp"
@@ -172,6 +174,20 @@ TEST(Chi2, MatchesReferenceInitialValuesOfPublicGraphs) {
   }
   if (checked == 0) GTEST_SKIP() << "no public pose graph files found next to refs/reference_values.tsv";
   EXPECT_GE(checked, 4);
+}
+
+// The iSAM copy of M3500: the reference converts its square-root information 44.72 to
+// information 2000 and evaluates chi2 along the odometry chain.
+TEST(Chi2, MatchesReferenceInitialValueOfIsamManhattan) {
+  const auto refs = testing::LoadReferenceValues(SLAMBOX_SOURCE_DIR);
+  const std::string path = testing::PublicDataFile(SLAMBOX_SOURCE_DIR, "posegraph/manhattanOlson3500_isam.txt");
+  if (path.empty() || !refs.count("manhattanOlson3500.txt"))
+    GTEST_SKIP() << "posegraph/manhattanOlson3500_isam.txt or its reference row not found; set SLAMBOX_DATA";
+  PoseGraphFile file = ReadPoseGraph(path);
+  EXPECT_NEAR(file.graph.edges[0].information(0, 0), 2000.0, 1e-3);
+  file.graph.poses = SpanningTreeInitialization(file.graph);
+  const double chi2_init = refs.at("manhattanOlson3500.txt").chi2_init;
+  EXPECT_NEAR(Chi2(file.graph), chi2_init, 1e-6 * chi2_init);
 }
 
 }  // namespace

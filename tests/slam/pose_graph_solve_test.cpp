@@ -74,6 +74,22 @@ TEST(SolvePoseGraph, NoisyGraphReachesBruteForceOptimum) {
   EXPECT_NEAR(r.chi2_final, chi2_brute, 1e-6 * chi2_brute);
 }
 
+TEST(SolvePoseGraph, IsDeterministic) {
+  testing::SyntheticGraph s = MakeSquareGraph({.laps = 2, .sigma_xy_m = 0.05, .sigma_theta_rad = 0.02, .seed = 6});
+  s.graph.poses = Perturbed(s.truth, s.graph.anchor, 0.2, 0.1, 7);
+  PoseGraph a = s.graph, b = s.graph;
+  const PoseGraphSolveResult ra = SolvePoseGraph(a, {.loop_kernel = RobustKernel::kDcs});
+  const PoseGraphSolveResult rb = SolvePoseGraph(b, {.loop_kernel = RobustKernel::kDcs});
+  EXPECT_EQ(ra.chi2_final, rb.chi2_final);
+  EXPECT_EQ(ra.iterations, rb.iterations);
+  EXPECT_EQ(ra.edge_weights, rb.edge_weights);
+  for (size_t i = 0; i < a.poses.size(); ++i) {
+    EXPECT_EQ(a.poses[i].x, b.poses[i].x);
+    EXPECT_EQ(a.poses[i].y, b.poses[i].y);
+    EXPECT_EQ(a.poses[i].theta, b.poses[i].theta);
+  }
+}
+
 TEST(SolvePoseGraph, HoldsTheAnchorFixed) {
   testing::SyntheticGraph s = MakeSquareGraph({.laps = 1});
   s.graph.anchor = 7;
@@ -106,6 +122,9 @@ TEST(SolvePoseGraph, RejectsEdgesToMissingPosesAndNonPositiveDefiniteInformation
   PoseGraph bad_anchor = s.graph;
   bad_anchor.anchor = -1;
   EXPECT_THROW(SolvePoseGraph(bad_anchor), InputError);
+  PoseGraph nan_pose = s.graph;
+  nan_pose.poses[4].x = NAN;
+  EXPECT_THROW(SolvePoseGraph(nan_pose), InputError);
 }
 
 TEST(SolvePoseGraph, IntelReachesReferenceOptimum) {
