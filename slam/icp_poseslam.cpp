@@ -1,0 +1,235 @@
+#include "slam/icp_poseslam.hpp"
+
+#include "core/error.hpp"
+#include "core/odometry_model.hpp"
+
+namespace slambox {
+
+namespace {
+constexpr double kDegToRad = M_PI / 180.0;
+
+RobustKernel ParseKernel(const std::string& name) {
+  if (name == "none") return RobustKernel::kNone;
+  if (name == "huber") return RobustKernel::kHuber;
+  if (name == "cauchy") return RobustKernel::kCauchy;
+  return RobustKernel::kDcs;
+}
+}  // namespace
+
+void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
+  BindIcpParams(c.icp, c.icp_choices, b);
+  BindIcpParams(c.loop_icp, c.loop_icp_choices, b, "loop_icp_");
+  b.Bind("adaptive_gate", c.adaptive_gate, "-", "KISS-ICP adaptive correspondence gate for the front end");
+  b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m", "new keyframe after this much translation");
+  b.Bind("keyframe_angle_deg", c.keyframe_angle_deg, "deg", "new keyframe after this much rotation");
+  b.Bind("edge_information", c.edge_information, {"hessian", "fixed"}, "information of ICP edges");
+  b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "cap on Hessian information, translation");
+  b.Bind("info_cap_sigma_theta_deg", c.info_cap_sigma_theta_deg, "deg", "cap on Hessian information, heading");
+  b.Bind("fixed_sigma_xy_m", c.fixed_sigma_xy_m, "m", "fixed edge information, translation");
+  b.Bind("fixed_sigma_theta_deg", c.fixed_sigma_theta_deg, "deg", "fixed edge information, heading");
+  b.Bind("loop_min_travel_m", c.loop.min_travel_m, "m", "path between keyframes before a loop may close");
+  b.Bind("loop_search_radius_m", c.loop.search_radius_m, "m", "base loop search radius");
+  b.Bind("loop_radius_per_travel", c.loop.radius_per_travel, "m/m", "search radius growth per metre travelled");
+  b.Bind("loop_max_search_radius_m", c.loop.max_search_radius_m, "m", "search radius cap");
+  b.Bind("loop_max_candidates", c.loop.max_candidates, "-", "ICP verifications per keyframe");
+  b.Bind("loop_max_rms_m", c.loop.max_rms_m, "m", "loop ICP fitness: max RMS residual");
+  b.Bind("loop_min_inlier_ratio", c.loop.min_inlier_ratio, "-", "loop ICP overlap: min inliers / points");
+  b.Bind("loop_kernel", c.loop_kernel, {"none", "huber", "cauchy", "dcs"}, "robust kernel on loop edges");
+  b.Bind("loop_kernel_scale", c.loop_kernel_scale, "-", "Huber/Cauchy scale (whitened) or DCS Phi");
+  b.Bind("loop_accept_weight", c.loop_accept_weight, "-", "loop edges weighted below this count as rejected");
+  b.Bind("solve_max_iterations", c.solve_max_iterations, "-", "Ceres iterations per solve");
+  b.Bind("source_voxel_m", c.source_voxel_m, "m", "subsample scans (0 = off)");
+  b.Bind("map_voxel_m", c.map_voxel_m, "m", "voxel size of the output map points");
+  b.Bind("grid_resolution_m", c.grid_resolution_m, "m", "occupancy grid cell size (0 = no grid)");
+}
+
+IcpPoseSlam::IcpPoseSlam(const IcpPoseSlamConfig& config)
+    : config_(config),
+      icp_(ResolveIcpConfig(config.icp, config.icp_choices, "icp-poseslam")),
+      loop_icp_(ResolveIcpConfig(config.loop_icp, config.loop_icp_choices, "icp-poseslam")) {
+  const auto positive = [](double v, const char* name) {
+    if (!(v > 0)) throw InputError(std::string("--set algo.icp-poseslam.") + name, 0, "must be > 0", "give a positive value");
+  };
+  positive(config.keyframe_distance_m, "keyframe_distance_m");
+  positive(config.keyframe_angle_deg, "keyframe_angle_deg");
+  positive(config.info_cap_sigma_xy_m, "info_cap_sigma_xy_m");
+  positive(config.info_cap_sigma_theta_deg, "info_cap_sigma_theta_deg");
+  positive(config.fixed_sigma_xy_m, "fixed_sigma_xy_m");
+  positive(config.fixed_sigma_theta_deg, "fixed_sigma_theta_deg");
+  positive(config.loop_kernel_scale, "loop_kernel_scale");
+  solve_options_.loop_kernel = ParseKernel(config.loop_kernel);
+  solve_options_.kernel_scale = config.loop_kernel_scale;
+  solve_options_.max_iterations = config.solve_max_iterations;
+}
+
+void IcpPoseSlam::Start(const StreamHeader& header) {
+  estimate_ = Estimate{};
+  start_pose_ = header.start_pose;
+  alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
+  T_kf_robot_ = T_kf_last_scan_ = start_pose_;  // before the first keyframe: absolute
+  odometry_cov_.setZero();
+  path_m_ = 0.0;
+  keyframes_.clear();
+  graph_ = PoseGraph{};
+  loop_record_of_edge_.clear();
+  records_.clear();
+  proposed_ = 0;
+  gate_ = AdaptiveThreshold{};
+  gate_.config.initial_gate_m = icp_.max_correspondence_m;
+  if (header.sensors.lidar) gate_.config.max_range_m = header.sensors.lidar->range_max_m;
+  RecordPose(0.0);
+}
+
+void IcpPoseSlam::RecordPose(double t_s) {
+  const int kf = static_cast<int>(keyframes_.size()) - 1;
+  if (!records_.empty() && records_.back().t_s == t_s) records_.pop_back();
+  records_.push_back({t_s, kf, T_kf_robot_});
+}
+
+void IcpPoseSlam::OnOdometry(const OdometryEvent& odometry) {
+  const OdometryIncrement u = Decompose(odometry.delta);
+  const MotionPrediction p = PredictMotion(T_kf_robot_, u);
+  odometry_cov_ = p.J_pose_pose * odometry_cov_ * p.J_pose_pose.transpose() +
+                  p.J_pose_increment * IncrementCovariance(u, alpha_) * p.J_pose_increment.transpose();
+  T_kf_robot_ = p.pose;
+  path_m_ += odometry.delta.translation().norm();
+  RecordPose(odometry.t_s);
+}
+
+void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
+  ScanPoints points = ScanToPoints(scan, {.voxel_size_m = config_.source_voxel_m});
+  if (keyframes_.empty()) {
+    AddKeyframe(scan, std::move(points), nullptr);
+    return;
+  }
+  IcpConfig icp = icp_;
+  if (config_.adaptive_gate) icp.max_correspondence_m = CorrespondenceGate(gate_);
+  const SE2 guess = T_kf_robot_;
+  const IcpResult r = RegisterIcp(points.points, keyframe_target_, guess, icp);
+  const bool ok = r.converged || r.num_inliers >= icp.min_inliers;
+  if (ok) {
+    if (config_.adaptive_gate) UpdateThreshold(gate_, T_kf_last_scan_.inverse() * guess, T_kf_last_scan_.inverse() * r.T_target_source);
+    T_kf_robot_ = r.T_target_source;
+  }
+  auto& d = estimate_.diagnostics;
+  d["icp_iterations"].emplace_back(scan.t_s, r.iterations);
+  d["icp_inliers"].emplace_back(scan.t_s, r.num_inliers);
+  d["hessian_min_eigenvalue"].emplace_back(scan.t_s, r.eigenvalues(0));
+  d["degenerate"].emplace_back(scan.t_s, r.degenerate ? 1.0 : 0.0);
+  T_kf_last_scan_ = T_kf_robot_;
+  const bool far = T_kf_robot_.translation().norm() >= config_.keyframe_distance_m ||
+                   std::abs(T_kf_robot_.theta) >= config_.keyframe_angle_deg * kDegToRad;
+  if (far && ok) AddKeyframe(scan, std::move(points), &r);
+  else RecordPose(scan.t_s);
+}
+
+void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, const IcpResult* edge_icp) {
+  const int k = static_cast<int>(keyframes_.size());
+  const SE2 pose = k == 0 ? T_kf_robot_ : graph_.poses.back() * T_kf_robot_;
+  if (k > 0) {
+    PoseGraphEdge e;
+    e.from = k - 1;
+    e.to = k;
+    e.T_from_to = T_kf_robot_;
+    e.information = config_.edge_information == "fixed"
+                        ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
+                        : IcpEdgeInformation(*edge_icp, odometry_cov_,
+                                             {config_.info_cap_sigma_xy_m, config_.info_cap_sigma_theta_deg * kDegToRad});
+    graph_.edges.push_back(e);
+    loop_record_of_edge_.push_back(-1);
+  }
+  graph_.poses.push_back(pose);
+  IcpTargetConfig tc;
+  tc.build_kd_tree = icp_.correspondence == IcpCorrespondence::kKdTree;
+  keyframe_target_ = MakeScanTarget(points, scan, tc);
+  LaserScanEvent geometry = scan;
+  geometry.ranges_m.assign(scan.ranges_m.size(), 0.0);  // only the beam layout is kept
+  keyframes_.push_back({scan.t_s, std::move(points), std::move(geometry), path_m_, std::nullopt});
+  T_kf_robot_ = T_kf_last_scan_ = SE2();
+  odometry_cov_.setZero();
+  RecordPose(scan.t_s);
+  if (k > 0) CloseLoops(scan.t_s);
+}
+
+void IcpPoseSlam::CloseLoops(double t_s) {
+  const int k = static_cast<int>(keyframes_.size()) - 1;
+  std::vector<double> path;
+  for (const auto& kf : keyframes_) path.push_back(kf.path_m);
+  bool added = false;
+  for (const LoopCandidate& c : FindLoopCandidates(graph_.poses, path, k, config_.loop)) {
+    Keyframe& old = keyframes_[static_cast<size_t>(c.keyframe)];
+    if (!old.loop_target) old.loop_target = MakeScanTarget(old.points, old.geometry);
+    const SE2 guess = Between(graph_.poses[static_cast<size_t>(c.keyframe)], graph_.poses.back());
+    const IcpResult r = RegisterIcp(keyframes_.back().points.points, *old.loop_target, guess, loop_icp_);
+    const LoopVerification v = VerifyLoopClosure(r, guess, c.radius_m, config_.loop);
+    ++proposed_;
+    estimate_.loop_closures.push_back({old.t_s, keyframes_.back().t_s, r.T_target_source, v.accepted});
+    if (!v.accepted) continue;
+    PoseGraphEdge e;
+    e.from = c.keyframe;
+    e.to = k;
+    e.T_from_to = r.T_target_source;
+    e.information = config_.edge_information == "fixed"
+                        ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
+                        : IcpEdgeInformation(r, 1e6 * Eigen::Matrix3d::Identity(),
+                                             {config_.info_cap_sigma_xy_m, config_.info_cap_sigma_theta_deg * kDegToRad});
+    e.loop_closure = true;
+    graph_.edges.push_back(e);
+    loop_record_of_edge_.push_back(static_cast<int>(estimate_.loop_closures.size()) - 1);
+    added = true;
+    break;  // one closure per keyframe; the solve below moves the rest
+  }
+  estimate_.diagnostics["loop_closures_proposed"].emplace_back(t_s, proposed_);
+  if (added) Solve();
+}
+
+void IcpPoseSlam::Solve() {
+  const PoseGraphSolveResult s = SolvePoseGraph(graph_, solve_options_);
+  int accepted = 0;
+  for (size_t i = 0; i < graph_.edges.size(); ++i) {
+    const int rec = loop_record_of_edge_[i];
+    if (rec < 0) continue;
+    const bool on = s.edge_weights.empty() || s.edge_weights[i] >= config_.loop_accept_weight;
+    estimate_.loop_closures[static_cast<size_t>(rec)].accepted = on;
+    accepted += on ? 1 : 0;
+  }
+  const double t = keyframes_.back().t_s;
+  estimate_.diagnostics["loop_closures_accepted"].emplace_back(t, accepted);
+  estimate_.diagnostics["pose_graph_chi2"].emplace_back(t, s.chi2_final);
+}
+
+Estimate IcpPoseSlam::Finish() {
+  if (keyframes_.size() > 1) Solve();
+  for (const Record& r : records_) {
+    const SE2 pose = r.keyframe < 0 ? r.T_kf_robot : graph_.poses[static_cast<size_t>(r.keyframe)] * r.T_kf_robot;
+    estimate_.trajectory.push_back(PoseEstimate{r.t_s, pose, Eigen::Matrix3d::Zero(), false});
+  }
+  std::vector<Eigen::Vector2d> all;
+  std::vector<std::vector<Eigen::Vector2d>> scans;
+  for (size_t k = 0; k < keyframes_.size(); ++k) {
+    for (const auto& p : keyframes_[k].points.points) all.push_back(graph_.poses[k] * p);
+    scans.push_back(keyframes_[k].points.points);
+  }
+  if (config_.map_voxel_m > 0)
+    for (int i : VoxelSubsample(all, config_.map_voxel_m)) estimate_.map_points.push_back(all[static_cast<size_t>(i)]);
+  else estimate_.map_points = std::move(all);
+  if (config_.grid_resolution_m > 0 && !keyframes_.empty())
+    estimate_.grid = BuildOccupancyGrid(graph_.poses, scans, {.resolution_m = config_.grid_resolution_m});
+  PoseGraphView& view = estimate_.pose_graph;
+  view.nodes = graph_.poses;
+  for (const auto& kf : keyframes_) view.node_t_s.push_back(kf.t_s);
+  for (size_t i = 0; i < graph_.edges.size(); ++i) {
+    const int rec = loop_record_of_edge_[i];
+    view.edges.push_back({graph_.edges[i].from, graph_.edges[i].to, graph_.edges[i].loop_closure,
+                          rec < 0 || estimate_.loop_closures[static_cast<size_t>(rec)].accepted});
+  }
+  return std::move(estimate_);
+}
+
+ModuleInfo IcpPoseSlamModule() {
+  return MakeModuleInfo<IcpPoseSlam, IcpPoseSlamConfig>(
+      "icp-poseslam", "keyframe pose graph with ICP edges, ICP-verified loop closures, robust Ceres back-end",
+      {.odometry = true, .lidar = true}, &BindParams);
+}
+
+}  // namespace slambox

@@ -1,0 +1,94 @@
+#pragma once
+// `icp-poseslam`: keyframe pose graph SLAM with ICP. Each scan is registered to the
+// latest keyframe (guess: wheel odometry); a new keyframe starts after keyframe_distance_m
+// or keyframe_angle_deg, joined by an ICP edge (information from the capped ICP Hessian,
+// or fixed). Loop-closure candidates (slam/loop_closure.hpp) are verified by ICP and the
+// graph is re-solved with Ceres (slam/pose_graph.hpp), a robust kernel on loop edges.
+// Output: keyframes optimized, every other pose re-anchored to its keyframe; map points
+// and an occupancy grid at the optimized keyframes.
+#include <optional>
+
+#include "core/slam_module.hpp"
+#include "slam/adaptive_threshold.hpp"
+#include "slam/edge_information.hpp"
+#include "slam/icp_params.hpp"
+#include "slam/loop_closure.hpp"
+#include "slam/occupancy_grid_builder.hpp"
+#include "slam/pose_graph.hpp"
+#include "slam/scan_points.hpp"
+
+namespace slambox {
+
+struct IcpPoseSlamConfig {
+  IcpConfig icp;                        ///< front end: scan to keyframe
+  IcpChoices icp_choices{.robust_kernel = "geman-mcclure"};  ///< redescending weights: movers do not drag ICP
+  IcpConfig loop_icp{.correspondence = IcpCorrespondence::kKdTree, .max_iterations = 50,
+                     .max_correspondence_m = 0.5};
+  IcpChoices loop_icp_choices{.correspondence = "kdtree"};
+  bool adaptive_gate = true;            ///< KISS-ICP adaptive gate for the front end
+  double keyframe_distance_m = 0.5;     ///< [m] new keyframe after this much translation
+  double keyframe_angle_deg = 20.0;     ///< [deg] ... or this much rotation
+  std::string edge_information = "hessian";  ///< hessian (capped) | fixed
+  double info_cap_sigma_xy_m = 0.005;    ///< [m] Hessian information cap, translation
+  double info_cap_sigma_theta_deg = 0.1; ///< [deg] Hessian information cap, heading
+  double fixed_sigma_xy_m = 0.02;        ///< [m] fixed information, translation
+  double fixed_sigma_theta_deg = 0.5;    ///< [deg] fixed information, heading
+  LoopClosureConfig loop;
+  std::string loop_kernel = "dcs";       ///< none | huber | cauchy | dcs, on loop edges only
+  double loop_kernel_scale = 100.0;        ///< Huber/Cauchy scale on the whitened residual; DCS Phi
+  double loop_accept_weight = 0.5;       ///< a loop edge the back-end weights below this counts as rejected
+  int solve_max_iterations = 50;
+  double source_voxel_m = 0.0;           ///< [m] subsample scans (0 = every valid beam)
+  double map_voxel_m = 0.05;             ///< [m] voxel size of Estimate::map_points
+  double grid_resolution_m = 0.05;       ///< [m] occupancy grid cell (0 = no grid)
+};
+void BindParams(IcpPoseSlamConfig& c, ParamBinder& b);
+
+class IcpPoseSlam : public SlamModule {
+ public:
+  explicit IcpPoseSlam(const IcpPoseSlamConfig& config);
+  void Start(const StreamHeader& header) override;
+  void OnOdometry(const OdometryEvent& odometry) override;
+  void OnLaserScan(const LaserScanEvent& scan) override;
+  Estimate Finish() override;
+
+ private:
+  struct Keyframe {
+    double t_s = 0.0;
+    ScanPoints points;
+    LaserScanEvent geometry;  ///< beam layout (for the loop-closure target)
+    double path_m = 0.0;      ///< path length travelled up to this keyframe
+    std::optional<IcpTarget> loop_target;  ///< built on first use
+  };
+  struct Record {  ///< a trajectory pose relative to a keyframe (-1: absolute, before the first)
+    double t_s = 0.0;
+    int keyframe = -1;
+    SE2 T_kf_robot;
+  };
+  void RecordPose(double t_s);
+  void AddKeyframe(const LaserScanEvent& scan, ScanPoints points, const IcpResult* edge_icp);
+  void CloseLoops(double t_s);
+  void Solve();
+
+  IcpPoseSlamConfig config_;
+  IcpConfig icp_, loop_icp_;
+  PoseGraphSolveOptions solve_options_;
+  AdaptiveThreshold gate_;
+  std::array<double, 4> alpha_{};
+  SE2 start_pose_;
+  SE2 T_kf_robot_;                 ///< current pose relative to the latest keyframe
+  SE2 T_kf_last_scan_;             ///< the previous scan's pose relative to the latest keyframe
+  Eigen::Matrix3d odometry_cov_ = Eigen::Matrix3d::Zero();  ///< of T_kf_robot_ by the motion model
+  double path_m_ = 0.0;
+  IcpTarget keyframe_target_;
+  std::vector<Keyframe> keyframes_;
+  PoseGraph graph_;
+  std::vector<int> loop_record_of_edge_;  ///< per graph edge: index into loop_closures, or -1
+  std::vector<Record> records_;
+  Estimate estimate_;
+  int proposed_ = 0;
+};
+
+ModuleInfo IcpPoseSlamModule();
+
+}  // namespace slambox

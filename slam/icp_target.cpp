@@ -1,0 +1,121 @@
+#include "slam/icp_target.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <nanoflann.hpp>
+
+namespace slambox {
+
+struct PointsAdaptor {
+  std::vector<Eigen::Vector2d> pts;
+  size_t kdtree_get_point_count() const { return pts.size(); }
+  double kdtree_get_pt(size_t i, size_t dim) const { return pts[i][static_cast<Eigen::Index>(dim)]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const { return false; }
+};
+
+using NanoflannTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointsAdaptor>, PointsAdaptor, 2,
+                                        std::uint32_t>;
+
+struct KdTree2d {
+  explicit KdTree2d(std::vector<Eigen::Vector2d> points)
+      : data{std::move(points)}, tree(2, data, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+  PointsAdaptor data;  // owned copy: the tree refers to it, so it must not move
+  NanoflannTree tree;
+};
+
+Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count) {
+  if (count < 2) return Eigen::Vector2d::Zero();
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (int i = 0; i < count; ++i) mean += points[i];
+  mean /= count;
+  double cxx = 0, cxy = 0, cyy = 0;
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector2d d = points[i] - mean;
+    cxx += d.x() * d.x();
+    cxy += d.x() * d.y();
+    cyy += d.y() * d.y();
+  }
+  if (cxx + cyy < 1e-18) return Eigen::Vector2d::Zero();
+  // Smaller eigenvalue of [[cxx, cxy], [cxy, cyy]] and its eigenvector (no trigonometry):
+  // (C - l I) v = 0 gives v = (cxy, l - cxx) or (l - cyy, cxy); take the better conditioned.
+  const double half_diff = 0.5 * (cxx - cyy);
+  const double l = 0.5 * (cxx + cyy) - std::sqrt(half_diff * half_diff + cxy * cxy);
+  const Eigen::Vector2d v1(cxy, l - cxx), v2(l - cyy, cxy);
+  const Eigen::Vector2d v = v1.squaredNorm() > v2.squaredNorm() ? v1 : v2;
+  const double norm = v.norm();
+  return norm > 0 ? Eigen::Vector2d(v / norm) : Eigen::Vector2d::Zero();
+}
+
+IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, const IcpTargetConfig& config) {
+  IcpTarget t;
+  t.points = sp.points;
+  t.angle_min_rad = geometry.angle_min_rad;
+  t.angle_increment_rad = geometry.angle_increment_rad;
+  t.point_of_beam.assign(geometry.ranges_m.size(), -1);
+  for (size_t k = 0; k < sp.beam.size(); ++k) t.point_of_beam[static_cast<size_t>(sp.beam[k])] = static_cast<int>(k);
+  const int n = static_cast<int>(t.points.size());
+  const int beams = static_cast<int>(t.point_of_beam.size());
+  const double max2 = config.normal_max_neighbor_m * config.normal_max_neighbor_m;
+  const bool full_circle = std::abs(beams * geometry.angle_increment_rad - 2 * M_PI) < 1e-6;
+  t.normals.assign(static_cast<size_t>(n), Eigen::Vector2d::Zero());
+  std::vector<Eigen::Vector2d> nb(static_cast<size_t>(2 * config.normal_half_window + 1));
+  for (int k = 0; k < n; ++k) {
+    int count = 0;
+    const int b0 = sp.beam[static_cast<size_t>(k)];
+    for (int db = -config.normal_half_window; db <= config.normal_half_window; ++db) {
+      int b = b0 + db;
+      if (full_circle) b = (b + beams) % beams;
+      if (b < 0 || b >= beams) continue;
+      const int j = t.point_of_beam[static_cast<size_t>(b)];
+      if (j >= 0 && (t.points[static_cast<size_t>(j)] - t.points[static_cast<size_t>(k)]).squaredNorm() <= max2)
+        nb[static_cast<size_t>(count++)] = t.points[static_cast<size_t>(j)];
+    }
+    if (count >= 3) t.normals[static_cast<size_t>(k)] = FitNormal(nb.data(), count);
+  }
+  t.full_circle = full_circle;
+  t.inverse_increment = 1.0 / geometry.angle_increment_rad;
+  t.beam_lookup.assign(static_cast<size_t>(beams + 2 * IcpTarget::kBeamPad), -1);
+  for (int b = -IcpTarget::kBeamPad; b < beams + IcpTarget::kBeamPad; ++b) {
+    const int wrapped = full_circle ? ((b % beams) + beams) % beams : b;
+    if (wrapped >= 0 && wrapped < beams)
+      t.beam_lookup[static_cast<size_t>(b + IcpTarget::kBeamPad)] = t.point_of_beam[static_cast<size_t>(wrapped)];
+  }
+  if (config.build_kd_tree) t.kd_tree = std::make_shared<const KdTree2d>(t.points);
+  return t;
+}
+
+IcpTarget MakeCloudTarget(std::vector<Eigen::Vector2d> points, const IcpTargetConfig& config) {
+  IcpTarget t;
+  t.points = std::move(points);
+  t.kd_tree = std::make_shared<const KdTree2d>(t.points);
+  const size_t k = static_cast<size_t>(2 * config.normal_half_window + 1);
+  const double max2 = config.normal_max_neighbor_m * config.normal_max_neighbor_m;
+  std::vector<std::uint32_t> idx(k);
+  std::vector<double> d2(k);
+  std::vector<Eigen::Vector2d> nb;
+  t.normals.assign(t.points.size(), Eigen::Vector2d::Zero());
+  for (size_t i = 0; i < t.points.size(); ++i) {
+    const size_t found = t.kd_tree->tree.knnSearch(t.points[i].data(), k, idx.data(), d2.data());
+    nb.clear();
+    for (size_t m = 0; m < found; ++m)
+      if (d2[m] <= max2) nb.push_back(t.points[idx[m]]);
+    if (nb.size() >= 3) t.normals[i] = FitNormal(nb.data(), static_cast<int>(nb.size()));
+  }
+  return t;
+}
+
+bool NearestByKdTree(const IcpTarget& target, const Eigen::Vector2d& q, int* index, double* dist2_m2) {
+  assert(target.kd_tree && "IcpTarget built without a kd-tree");
+  if (target.points.empty()) return false;
+  std::uint32_t i = 0;
+  double d2 = 0;
+  if (target.kd_tree->tree.knnSearch(q.data(), 1, &i, &d2) == 0) return false;
+  *index = static_cast<int>(i);
+  *dist2_m2 = d2;
+  return true;
+}
+
+}  // namespace slambox

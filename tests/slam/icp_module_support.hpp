@@ -1,0 +1,65 @@
+#pragma once
+// Test support for the ICP modules: a synthetic ring corridor with pillars, its stream,
+// and the position RMSE of an estimate against ground truth at shared timestamps.
+#include <cmath>
+#include <map>
+
+#include "core/slam_module.hpp"
+#include "tests/support/synthetic_scan.hpp"
+#include "tests/support/synthetic_stream.hpp"
+
+namespace slambox::testing {
+
+/// Square ring corridor around (5, 5): outer walls at -2 and 12, an inner block 2..8,
+/// a few pillars so straight legs are not perfectly degenerate.
+inline World RingWorld() {
+  World w;
+  w.wall_segments = Polyline({{-2, -2}, {12, -2}, {12, 12}, {-2, 12}}, true);
+  const auto inner = Polyline({{2, 2}, {8, 2}, {8, 8}, {2, 8}}, true);
+  w.wall_segments.insert(w.wall_segments.end(), inner.begin(), inner.end());
+  for (const Eigen::Vector2d c : {Eigen::Vector2d(5, -1.2), Eigen::Vector2d(11, 5), Eigen::Vector2d(4, 11.2),
+                                  Eigen::Vector2d(-1, 3)}) {
+    const auto box = Polyline({c + Eigen::Vector2d(-0.2, -0.2), c + Eigen::Vector2d(0.2, -0.2),
+                               c + Eigen::Vector2d(0.2, 0.2), c + Eigen::Vector2d(-0.2, 0.2)}, true);
+    w.wall_segments.insert(w.wall_segments.end(), box.begin(), box.end());
+  }
+  return w;
+}
+
+inline Stream RingStream(std::uint64_t seed, int laps) {
+  SyntheticOptions o;
+  o.laps = laps;
+  o.seed = seed;
+  o.dt_s = 0.02;
+  o.lidar_every_steps = 5;  // 10 Hz
+  o.sensors.odometry = OdometryConfig{};
+  o.sensors.odometry->alpha = {0.05, 0.005, 0.05, 0.005};
+  LidarConfig lidar;
+  lidar.beams = 360;
+  lidar.sigma_range_m = 0.01;
+  lidar.range_max_m = 30;
+  o.sensors.lidar = lidar;
+  return MakeSyntheticStream(o, RingWorld());
+}
+
+/// RMSE of the estimated positions at the ground-truth times they share (no alignment).
+inline double PositionRmse(const Estimate& e, const Stream& s) {
+  std::map<double, SE2> gt;
+  for (const auto& g : s.groundtruth) gt[g.t_s] = g.pose;
+  double sum = 0;
+  int n = 0;
+  for (const auto& p : e.trajectory) {
+    auto it = gt.find(p.t_s);
+    if (it == gt.end()) continue;
+    sum += (p.pose.translation() - it->second.translation()).squaredNorm();
+    ++n;
+  }
+  return n ? std::sqrt(sum / n) : INFINITY;
+}
+
+inline Estimate RunModule(const ModuleInfo& info, const Stream& s, const ParamOverrides& overrides = {}) {
+  auto module = info.create(overrides);
+  return Replay(*module, s);
+}
+
+}  // namespace slambox::testing

@@ -1,0 +1,57 @@
+// icp-odometry on a synthetic ring corridor: far better than wheel odometry, fixed seeds.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "core/error.hpp"
+#include "slam/dead_reckoning.hpp"
+#include "slam/icp_odometry.hpp"
+#include "tests/slam/icp_module_support.hpp"
+
+namespace slambox {
+namespace {
+
+TEST(IcpOdometry, BeatsWheelOdometryOnRing) {
+  const Stream s = testing::RingStream(3, 1);
+  const double odo = testing::PositionRmse(testing::RunModule(DeadReckoningModule(), s), s);
+  const Estimate est = testing::RunModule(IcpOdometryModule(), s);
+  const double icp = testing::PositionRmse(est, s);
+  std::printf("ring: odometry %.3f m, icp-odometry %.3f m\n", odo, icp);
+  EXPECT_LT(icp, 0.15);
+  EXPECT_LT(icp, odo / 3);
+  ASSERT_EQ(est.trajectory.size(), s.groundtruth.size());  // every odometry event + start, scans merged
+  EXPECT_FALSE(est.diagnostics.at("icp_iterations").empty());
+}
+
+TEST(IcpOdometry, VariantsAllWork) {
+  const Stream s = testing::RingStream(4, 1);
+  const ParamOverrides variants[] = {
+      {{"correspondence", "kdtree"}},
+      {{"local_map_scans", "10"}},
+      {{"robust_kernel", "huber"}, {"trim_fraction", "0.1"}},
+  };
+  for (const auto& v : variants) {
+    const double icp = testing::PositionRmse(testing::RunModule(IcpOdometryModule(), s, v), s);
+    std::printf("variant %s: %.3f m\n", v.begin()->second.c_str(), icp);
+    EXPECT_LT(icp, 0.3) << v.begin()->first << "=" << v.begin()->second;
+  }
+}
+
+TEST(IcpOdometry, Deterministic) {
+  const Stream s = testing::RingStream(5, 1);
+  const Estimate a = testing::RunModule(IcpOdometryModule(), s);
+  const Estimate b = testing::RunModule(IcpOdometryModule(), s);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (size_t i = 0; i < a.trajectory.size(); ++i) {
+    EXPECT_EQ(a.trajectory[i].pose.x, b.trajectory[i].pose.x);
+    EXPECT_EQ(a.trajectory[i].pose.theta, b.trajectory[i].pose.theta);
+  }
+}
+
+TEST(IcpOdometry, BadParameterIsInputError) {
+  EXPECT_THROW(IcpOdometryModule().create({{"trim_fraction", "1.5"}}), InputError);
+  EXPECT_THROW(IcpOdometryModule().create({{"metric", "plane"}}), InputError);
+}
+
+}  // namespace
+}  // namespace slambox

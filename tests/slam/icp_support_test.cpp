@@ -1,0 +1,124 @@
+// Pieces around ICP: scan to points, voxel subsampling, the adaptive gate, loop-closure
+// candidates and verification, edge information caps, the occupancy grid.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "slam/adaptive_threshold.hpp"
+#include "slam/edge_information.hpp"
+#include "slam/loop_closure.hpp"
+#include "slam/occupancy_grid_builder.hpp"
+#include "slam/scan_points.hpp"
+
+namespace slambox {
+namespace {
+
+TEST(ScanPoints, ValidBeamsOnlyAtTheirAngles) {
+  LaserScanEvent scan;
+  scan.angle_min_rad = -M_PI / 2;
+  scan.angle_increment_rad = M_PI / 2;
+  scan.range_min_m = 0.1;
+  scan.range_max_m = 10;
+  scan.ranges_m = {1.0, 2.0, 10.0, 0.05};
+  scan.valid = {1, 1, 0, 1};  // beam 2 is a miss, beam 3 below range_min
+  const ScanPoints p = ScanToPoints(scan);
+  ASSERT_EQ(p.points.size(), 2u);
+  EXPECT_NEAR(p.points[0].x(), 0.0, 1e-12);
+  EXPECT_NEAR(p.points[0].y(), -1.0, 1e-12);
+  EXPECT_NEAR(p.points[1].x(), 2.0, 1e-12);
+  EXPECT_EQ(p.beam[1], 1);
+  EXPECT_EQ(ScanToPoints(scan, {.range_max_m = 1.5}).points.size(), 1u);
+}
+
+TEST(ScanPoints, VoxelSubsampleKeepsOnePerCellInOrder) {
+  const std::vector<Eigen::Vector2d> pts = {{0.01, 0.01}, {0.02, 0.03}, {0.11, 0.0}, {-0.01, 0.0}, {0.12, 0.02}};
+  const std::vector<int> kept = VoxelSubsample(pts, 0.1);
+  EXPECT_EQ(kept, (std::vector<int>{0, 2, 3}));
+}
+
+TEST(AdaptiveThreshold, GateIsThreeSigmaOfModelDeviation) {
+  AdaptiveThreshold th;
+  th.config.max_range_m = 10;
+  EXPECT_DOUBLE_EQ(CorrespondenceGate(th), th.config.initial_gate_m);
+  UpdateThreshold(th, SE2(0.001, 0, 0), SE2(0.5, 0, 0));  // standstill prediction: skipped
+  EXPECT_EQ(th.samples, 0);
+  UpdateThreshold(th, SE2(0.1, 0, 0), SE2(0.12, 0, 0));
+  UpdateThreshold(th, SE2(0.1, 0, 0), SE2(0.1, 0, 0.01));
+  const double d2 = 2 * 10 * std::sin(0.005);
+  EXPECT_NEAR(CorrespondenceGate(th), std::max(3 * std::sqrt((0.02 * 0.02 + d2 * d2) / 2), th.config.min_gate_m),
+              1e-9);
+}
+
+TEST(LoopClosure, CandidatesNearestFirstAfterEnoughTravel) {
+  const std::vector<SE2> poses = {SE2(0, 0, 0), SE2(5, 0, 0), SE2(0.3, 0.2, 0), SE2(9, 9, 0), SE2(0.1, 0, 0)};
+  const std::vector<double> path = {0, 10, 20, 30, 40};
+  LoopClosureConfig c;
+  c.min_travel_m = 15;
+  c.search_radius_m = 0.5;
+  c.radius_per_travel = 0.0;
+  const auto cand = FindLoopCandidates(poses, path, 4, c);
+  ASSERT_EQ(cand.size(), 2u);
+  EXPECT_EQ(cand[0].keyframe, 0);  // 0.1 m away
+  EXPECT_EQ(cand[1].keyframe, 2);  // 0.28 m away
+  c.min_travel_m = 30;             // keyframe 2 is too recent now
+  EXPECT_EQ(FindLoopCandidates(poses, path, 4, c).size(), 1u);
+}
+
+TEST(LoopClosure, VerificationChecksEachCriterion) {
+  LoopClosureConfig c;
+  IcpResult r;
+  r.converged = true;
+  r.num_source = 100;
+  r.num_inliers = 90;
+  r.rms_residual_m = 0.01;
+  r.T_target_source = SE2(1.0, 0, 0);
+  EXPECT_TRUE(VerifyLoopClosure(r, SE2(0.9, 0, 0), 1.0, c).accepted);
+  EXPECT_EQ(VerifyLoopClosure(r, SE2(-0.5, 0, 0), 1.0, c).reason, "correction beyond search radius");
+  IcpResult bad = r;
+  bad.degenerate = true;
+  EXPECT_FALSE(VerifyLoopClosure(bad, SE2(0.9, 0, 0), 1.0, c).accepted);
+  bad = r;
+  bad.num_inliers = 30;
+  EXPECT_EQ(VerifyLoopClosure(bad, SE2(0.9, 0, 0), 1.0, c).reason, "overlap");
+  bad = r;
+  bad.rms_residual_m = 0.2;
+  EXPECT_EQ(VerifyLoopClosure(bad, SE2(0.9, 0, 0), 1.0, c).reason, "fitness");
+}
+
+TEST(EdgeInformation, CappedAndDegenerateDirectionFromOdometry) {
+  IcpResult r;
+  r.covariance = Eigen::Vector3d(1e-8, 1e-4, 1e-8).asDiagonal();  // x and theta very certain
+  r.eigenvectors = Eigen::Matrix3d::Identity();
+  const InformationCaps caps{0.01, 0.01};
+  Eigen::Matrix3d info = IcpEdgeInformation(r, Eigen::Matrix3d::Identity(), caps);
+  EXPECT_NEAR(info(0, 0), 1e4, 1e-6);  // capped at 1 / 0.01^2
+  EXPECT_NEAR(info(1, 1), 1e4, 1e-6);  // 1e-4 variance is exactly the cap
+  EXPECT_NEAR(info(2, 2), 1e4, 1e-6);
+  // Degenerate along x (column 0): x's information comes from the odometry (sigma 0.5 m).
+  r.covariance = Eigen::Vector3d(1e6, 1e-3, 1e-3).asDiagonal();
+  r.degenerate = true;
+  r.degenerate_dimensions = 1;
+  info = IcpEdgeInformation(r, Eigen::Vector3d(0.25, 0.25, 0.25).asDiagonal(), caps);
+  EXPECT_NEAR(info(0, 0), 4.0, 1e-9);
+  EXPECT_NEAR(info(1, 1), 1e3, 1e-6);
+  EXPECT_NEAR(info(0, 1), 0.0, 1e-9);
+}
+
+TEST(OccupancyGrid, BeamsMarkFreeAndOccupiedCells) {
+  // One pose at the origin looking at a hit 1 m ahead along +x.
+  const OccupancyGrid g = BuildOccupancyGrid({SE2(0.025, 0.025, 0)}, {{Eigen::Vector2d(1.0, 0.0)}},
+                                             {.resolution_m = 0.05, .margin_m = 0.5});
+  const auto cell = [&](double x, double y) {
+    const int ix = static_cast<int>(std::floor((x - g.origin_m.x()) / g.resolution_m));
+    const int iy = static_cast<int>(std::floor((y - g.origin_m.y()) / g.resolution_m));
+    return g.cells[static_cast<size_t>(iy * g.width + ix)];
+  };
+  EXPECT_GT(cell(1.03, 0.03), 50);  // the hit
+  EXPECT_LT(cell(0.5, 0.03), 50);   // passed through
+  EXPECT_GE(cell(0.5, 0.03), 0);
+  EXPECT_EQ(cell(0.5, 0.4), -1);    // never observed
+}
+
+}  // namespace
+}  // namespace slambox
