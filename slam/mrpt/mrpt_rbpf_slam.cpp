@@ -87,7 +87,8 @@ void MrptRbpfSlam::OnLaserScan(const LaserScanEvent& scan) {
   State& s = *state_;
   mrpt::obs::CActionCollection actions;
   const mb::ActionNoiseFloor floor{};
-  if (!s.pending.empty) actions.insert(mb::ToMrptAction(s.pending, floor));
+  if (s.pending.empty) s.pending.t_s = scan.t_s;  // MRPT asserts an action: a zero motion
+  actions.insert(mb::ToMrptAction(s.pending, floor));
   s.pending.Reset();
   mrpt::obs::CSensoryFrame frame;
   frame.insert(std::make_shared<mrpt::obs::CObservation2DRangeScan>(mb::ToMrptScan(scan, s.sigma_range_m)));
