@@ -38,6 +38,15 @@ mrpt::obs::CActionRobotMovement2D ToMrptAction(const OdometryAccumulator& odomet
   return action;
 }
 
+void UseMrptThrunModel(mrpt::obs::CActionRobotMovement2D& action, const std::array<double, 4>& alpha, double scale) {
+  auto& m = action.motionModelConfiguration;
+  m.modelSelection = mrpt::obs::CActionRobotMovement2D::mmThrun;
+  m.thrunModel.alfa1_rot_rot = static_cast<float>(scale * std::sqrt(alpha[0]));
+  m.thrunModel.alfa2_rot_trans = static_cast<float>(scale * std::sqrt(alpha[1]));
+  m.thrunModel.alfa3_trans_trans = static_cast<float>(scale * std::sqrt(alpha[2]));
+  m.thrunModel.alfa4_trans_rot = static_cast<float>(scale * std::sqrt(alpha[3]));
+}
+
 mrpt::obs::CObservation2DRangeScan ToMrptScan(const LaserScanEvent& scan, double sigma_range_m) {
   mrpt::obs::CObservation2DRangeScan out;
   const size_t n = scan.ranges_m.size();

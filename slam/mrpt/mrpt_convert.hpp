@@ -50,6 +50,13 @@ struct ActionNoiseFloor {
 /// covariance is the Thrun-model covariance of the increment (linearized, plus the floor).
 mrpt::obs::CActionRobotMovement2D ToMrptAction(const OdometryAccumulator& odometry, const ActionNoiseFloor& floor);
 
+/// Makes MRPT re-derive the action's noise with its Thrun model (what CMetricMapBuilderRBPF
+/// does: it rebuilds the action from the accumulated mean and motionModelConfiguration).
+/// MRPT's model draws std = α1|rot1| + α2|trans| (rot1, rot2) and α3|trans| + α4(|rot1| +
+/// |rot2|) (trans), linear in the motion, where ours has variance a1 rot1² + a2 trans²;
+/// αi = scale·√ai gives a std between 1 and √2 times ours for one increment.
+void UseMrptThrunModel(mrpt::obs::CActionRobotMovement2D& action, const std::array<double, 4>& alpha, double scale);
+
 /// LaserScanEvent → CObservation2DRangeScan. MRPT spaces beams by aperture / (N - 1),
 /// right to left from -aperture/2 in the sensor frame, so aperture = (N - 1) * increment
 /// and the sensor is yawed by the scan's centre direction angle_min + aperture / 2: beam

@@ -23,6 +23,7 @@ void BindParams(MrptRbpfSlamConfig& c, ParamBinder& b) {
   b.Bind("likelihood_sigma_hit_m", c.likelihood_sigma_hit_m, "m", "likelihood-field std of a beam end point");
   b.Bind("likelihood_decimation", c.likelihood_decimation, "-", "use every n-th beam in the likelihood");
   b.Bind("icp_min_quality", c.icp_min_quality, "-", "optimal proposal: minimum scan-match quality, else odometry");
+  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on MRPT's Thrun-model stds (alpha_i = scale * sqrt(a_i))");
   b.Bind("occupied_below_free_prob", c.occupied_below_free_prob, "-", "grid cells with p(free) below this are map points");
 }
 
@@ -88,7 +89,9 @@ void MrptRbpfSlam::OnLaserScan(const LaserScanEvent& scan) {
   mrpt::obs::CActionCollection actions;
   const mb::ActionNoiseFloor floor{};
   if (s.pending.empty) s.pending.t_s = scan.t_s;  // MRPT asserts an action: a zero motion
-  actions.insert(mb::ToMrptAction(s.pending, floor));
+  mrpt::obs::CActionRobotMovement2D action = mb::ToMrptAction(s.pending, floor);
+  mb::UseMrptThrunModel(action, s.alpha, config_.motion_noise_scale);
+  actions.insert(action);
   s.pending.Reset();
   mrpt::obs::CSensoryFrame frame;
   frame.insert(std::make_shared<mrpt::obs::CObservation2DRangeScan>(mb::ToMrptScan(scan, s.sigma_range_m)));
@@ -107,7 +110,11 @@ Estimate MrptRbpfSlam::Finish() {
   s.builder->getCurrentMostLikelyPath(path);
   for (size_t k = 0; k < path.size() && k < s.step_t_s.size(); ++k) {
     const SE2 pose_start(path[k].x, path[k].y, path[k].yaw);
-    s.estimate.trajectory.push_back({s.step_t_s[k], mb::ToWorld(s.start, pose_start), Eigen::Matrix3d::Zero(), false});
+    const PoseEstimate pe{s.step_t_s[k], mb::ToWorld(s.start, pose_start), Eigen::Matrix3d::Zero(), false};
+    if (!s.estimate.trajectory.empty() && s.estimate.trajectory.back().t_s == pe.t_s)
+      s.estimate.trajectory.back() = pe;  // a filter step on a scan at t = 0 refines the start
+    else
+      s.estimate.trajectory.push_back(pe);
   }
   const auto* maps = s.builder->getCurrentlyBuiltMetricMap();
   if (maps) {

@@ -1,9 +1,10 @@
 #pragma once
 // `mrpt-rbpf-slam`: MRPT 2.5's CMetricMapBuilderRBPF with one occupancy grid per particle
 // (grid-map RBPF from LIDAR and odometry, Grisetti/Stachniss style). Odometry between
-// scans is one CActionRobotMovement2D (Gaussian, Thrun-model covariance); MRPT itself
-// accumulates it until the robot has moved localize_lin_distance_m or
-// localize_ang_distance_deg, then runs one particle-filter step. Proposal:
+// scans is one CActionRobotMovement2D; MRPT itself accumulates it until the robot has moved localize_lin_distance_m or
+// localize_ang_distance_deg, then re-derives the step's noise with its own Thrun model
+// (alphas from the stream's, see UseMrptThrunModel) and runs one particle-filter step.
+// Proposal:
 // "optimal" = pfOptimalProposal with scan matching against each particle's grid (MRPT's
 // gridmapping_optimal_sampling setup), "standard" = odometry sampling + likelihood field.
 // The trajectory is the most likely particle's path at the filter steps (it changes as
@@ -28,6 +29,7 @@ struct MrptRbpfSlamConfig {
   double likelihood_sigma_hit_m = 0.10;  ///< likelihood-field std (standard proposal)
   int likelihood_decimation = 5;         ///< use every n-th beam in the likelihood
   double icp_min_quality = 0.70;         ///< optimal proposal: below this, use odometry
+  double motion_noise_scale = 1.0;       ///< MRPT Thrun model: alpha_i = scale * sqrt(a_i) of the stream
   double occupied_below_free_prob = 0.3; ///< a cell is a map point when p(free) < this
 };
 void BindParams(MrptRbpfSlamConfig& c, ParamBinder& b);
