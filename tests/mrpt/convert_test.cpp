@@ -141,6 +141,17 @@ TEST(MrptConvert, OdometryActionIsTheComposedIncrementWithThrunCovariance) {
   EXPECT_GT(cov(0, 0), 0.0);
 }
 
+TEST(MrptConvert, MrptThrunModelAlphasAreScaledSquareRootsOfOurs) {
+  mrpt::obs::CActionRobotMovement2D action;
+  mb::UseMrptThrunModel(action, {0.04, 0.01, 0.09, 0.16}, 2.0);
+  const auto& m = action.motionModelConfiguration;
+  EXPECT_EQ(m.modelSelection, mrpt::obs::CActionRobotMovement2D::mmThrun);
+  EXPECT_FLOAT_EQ(m.thrunModel.alfa1_rot_rot, 0.4f);
+  EXPECT_FLOAT_EQ(m.thrunModel.alfa2_rot_trans, 0.2f);
+  EXPECT_FLOAT_EQ(m.thrunModel.alfa3_trans_trans, 0.6f);
+  EXPECT_FLOAT_EQ(m.thrunModel.alfa4_trans_rot, 0.8f);
+}
+
 TEST(MrptConvert, BearingRangeSignConventionThroughMrptEkf) {
   // MRPT's EKF starts at the origin; its first landmark lands where our convention puts it:
   // positive bearing = counter-clockwise = +y for a robot facing +x.

@@ -36,5 +36,24 @@ TEST(MrptRbpfSlam, StaysNearDeadReckoningAndMapsTheRoom) {
   EXPECT_FALSE(e.diagnostics.at("neff").empty());
 }
 
+TEST(MrptRbpfSlam, ScanBeforeAnyOdometryIsAZeroMotionStep) {
+  // The simulator emits a scan at t = 0: MRPT asserts an action, and the filter step it
+  // runs there must not duplicate the start time in the trajectory.
+  Stream s = LidarStream(4.0, 8, kDriftyOdometry);
+  s.events.resize(200);  // a short prefix keeps this fast
+  for (const auto& ev : s.events)
+    if (const auto* scan = std::get_if<LaserScanEvent>(&ev)) {
+      LaserScanEvent first = *scan;
+      first.t_s = 0.0;
+      s.events.insert(s.events.begin(), first);
+      break;
+    }
+  const Estimate e = RunRbpf(s);
+  ASSERT_GE(e.trajectory.size(), 2u);
+  EXPECT_EQ(e.trajectory.front().t_s, 0.0);
+  for (size_t k = 1; k < e.trajectory.size(); ++k) ASSERT_GT(e.trajectory[k].t_s, e.trajectory[k - 1].t_s);
+  EXPECT_LT(Rmse(PositionErrors(e, s)), 2.0 * DeadReckoningRmse(e, s) + 0.05);  // see the known issue above
+}
+
 }  // namespace
 }  // namespace slambox::testing
