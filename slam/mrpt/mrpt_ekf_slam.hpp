@@ -1,0 +1,46 @@
+#pragma once
+// `mrpt-ekf-slam`: MRPT 2.5's CRangeBearingKFSLAM2D (EKF over robot pose + 2D landmarks)
+// as a peer of slambox's `ekf-slam`. Odometry between landmark events is composed into
+// one CActionRobotMovement2D (Gaussian, Thrun-model covariance); each non-empty landmark
+// event is one EKF step. Known ids are passed to MRPT; unknown ones go through MRPT's
+// nearest-neighbour Mahalanobis data association.
+//
+// MRPT's filter starts at (0, 0, 0) with zero covariance and skips the prediction while
+// its map is empty, so the module dead-reckons until the first landmark is seen and
+// anchors MRPT's frame at that dead-reckoned pose (its covariance is then MRPT's, from
+// zero). Between EKF steps the pose is propagated by odometry (P' = G P Gᵀ + V M Vᵀ).
+#include <memory>
+#include <string>
+
+#include "core/slam_module.hpp"
+
+namespace slambox {
+
+struct MrptEkfSlamConfig {
+  std::string data_association = "nn";  ///< unknown ids: "nn" (assocNN) or "jcbb" (assocJCBB)
+  double association_chi2_quantile = 0.99;  ///< individual-compatibility gate (chi² quantile)
+  double noise_scale = 1.0;       ///< factor on the stream's sensor and odometry variances
+  double min_sigma_xy_m = 1e-4;   ///< floor on the action's position std (zero motion)
+  double min_sigma_theta_deg = 0.01;  ///< floor on the action's heading std
+};
+void BindParams(MrptEkfSlamConfig& c, ParamBinder& b);
+
+class MrptEkfSlam : public SlamModule {
+ public:
+  explicit MrptEkfSlam(const MrptEkfSlamConfig& config);
+  ~MrptEkfSlam() override;
+  void Start(const StreamHeader& header) override;
+  void OnOdometry(const OdometryEvent& odometry) override;
+  void OnLandmarks(const LandmarkEvent& landmarks) override;
+  Estimate Finish() override;
+
+  struct State;  ///< MRPT objects (pimpl: MRPT stays out of this header)
+
+ private:
+  MrptEkfSlamConfig config_;
+  std::unique_ptr<State> state_;
+};
+
+ModuleInfo MrptEkfSlamModule();
+
+}  // namespace slambox

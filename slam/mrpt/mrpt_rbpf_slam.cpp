@@ -1,0 +1,138 @@
+#include "slam/mrpt/mrpt_rbpf_slam.hpp"
+
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/slam/CMetricMapBuilderRBPF.h>
+
+#include "slam/mrpt/mrpt_convert.hpp"
+
+namespace slambox {
+
+namespace mb = mrpt_bridge;
+
+void BindParams(MrptRbpfSlamConfig& c, ParamBinder& b) {
+  b.Bind("proposal", c.proposal, {"optimal", "standard"}, "pfOptimalProposal (scan matching) or pfStandardProposal");
+  b.Bind("particles", c.particles, "-", "number of particles (one grid map each)");
+  b.Bind("resample_ess_ratio", c.resample_ess_ratio, "-", "resample when ESS/N is below this (MRPT BETA)");
+  b.Bind("grid_resolution_m", c.grid_resolution_m, "m", "occupancy grid cell size");
+  b.Bind("localize_lin_distance_m", c.localize_lin_distance_m, "m", "motion between particle-filter steps");
+  b.Bind("localize_ang_distance_deg", c.localize_ang_distance_deg, "deg", "rotation between particle-filter steps");
+  b.Bind("insertion_lin_distance_m", c.insertion_lin_distance_m, "m", "motion between grid insertions");
+  b.Bind("insertion_ang_distance_deg", c.insertion_ang_distance_deg, "deg", "rotation between grid insertions");
+  b.Bind("likelihood_sigma_hit_m", c.likelihood_sigma_hit_m, "m", "likelihood-field std of a beam end point");
+  b.Bind("likelihood_decimation", c.likelihood_decimation, "-", "use every n-th beam in the likelihood");
+  b.Bind("icp_min_quality", c.icp_min_quality, "-", "optimal proposal: minimum scan-match quality, else odometry");
+  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on MRPT's Thrun-model stds (alpha_i = scale * sqrt(a_i))");
+  b.Bind("occupied_below_free_prob", c.occupied_below_free_prob, "-", "grid cells with p(free) below this are map points");
+}
+
+struct MrptRbpfSlam::State {
+  std::unique_ptr<mrpt::slam::CMetricMapBuilderRBPF> builder;
+  std::array<double, 4> alpha{};
+  double sigma_range_m = 0.01;
+  SE2 start;
+  mb::OdometryAccumulator pending;  ///< odometry since the last scan
+  std::vector<double> step_t_s;     ///< time of each path entry (entry 0: the start)
+  Estimate estimate;
+};
+
+MrptRbpfSlam::MrptRbpfSlam(const MrptRbpfSlamConfig& config) : config_(config) {}
+MrptRbpfSlam::~MrptRbpfSlam() = default;
+
+void MrptRbpfSlam::Start(const StreamHeader& header) {
+  mb::SeedMrptRandom(header.seed);
+  state_ = std::make_unique<State>();
+  State& s = *state_;
+  s.start = header.start_pose;
+  s.alpha = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
+  if (header.sensors.lidar) s.sigma_range_m = header.sensors.lidar->sigma_range_m;
+
+  mrpt::slam::CMetricMapBuilderRBPF::TConstructionOptions o;
+  o.verbosity_level = mrpt::system::LVL_ERROR;
+  o.insertionLinDistance = static_cast<float>(config_.insertion_lin_distance_m);
+  o.insertionAngDistance = static_cast<float>(config_.insertion_ang_distance_deg * M_PI / 180.0);
+  o.localizeLinDistance = static_cast<float>(config_.localize_lin_distance_m);
+  o.localizeAngDistance = static_cast<float>(config_.localize_ang_distance_deg * M_PI / 180.0);
+  o.PF_options.PF_algorithm =
+      config_.proposal == "optimal" ? mrpt::bayes::CParticleFilter::pfOptimalProposal
+                                    : mrpt::bayes::CParticleFilter::pfStandardProposal;
+  o.PF_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
+  o.PF_options.sampleSize = static_cast<unsigned>(config_.particles);
+  o.PF_options.adaptiveSampleSize = false;
+  o.PF_options.BETA = config_.resample_ess_ratio;
+  o.predictionOptions.pfOptimalProposal_mapSelection = 0;  // scan matching against the grid
+  o.predictionOptions.ICPGlobalAlign_MinQuality = static_cast<float>(config_.icp_min_quality);
+  mrpt::maps::COccupancyGridMap2D::TMapDefinition grid;
+  grid.min_x = grid.min_y = -10.0f;
+  grid.max_x = grid.max_y = 10.0f;  // grows as scans are inserted
+  grid.resolution = static_cast<float>(config_.grid_resolution_m);
+  grid.insertionOpts.maxDistanceInsertion = 15.0f;
+  grid.likelihoodOpts.likelihoodMethod = mrpt::maps::COccupancyGridMap2D::lmLikelihoodField_Thrun;
+  grid.likelihoodOpts.LF_stdHit = static_cast<float>(config_.likelihood_sigma_hit_m);
+  grid.likelihoodOpts.LF_decimation = static_cast<uint32_t>(config_.likelihood_decimation);
+  o.mapsInitializers.push_back(grid);
+
+  s.builder = std::make_unique<mrpt::slam::CMetricMapBuilderRBPF>(o);
+  s.builder->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+  s.builder->mapPDF.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+  s.builder->initialize();  // every particle at MRPT's origin = the stream's start pose
+  std::deque<mrpt::math::TPose3D> path;
+  s.builder->getCurrentMostLikelyPath(path);
+  s.step_t_s.assign(path.size(), 0.0);  // the initial pose(s)
+}
+
+void MrptRbpfSlam::OnOdometry(const OdometryEvent& odometry) { state_->pending.Add(odometry, state_->alpha); }
+
+void MrptRbpfSlam::OnLaserScan(const LaserScanEvent& scan) {
+  State& s = *state_;
+  mrpt::obs::CActionCollection actions;
+  const mb::ActionNoiseFloor floor{};
+  if (s.pending.empty) s.pending.t_s = scan.t_s;  // MRPT asserts an action: a zero motion
+  mrpt::obs::CActionRobotMovement2D action = mb::ToMrptAction(s.pending, floor);
+  mb::UseMrptThrunModel(action, s.alpha, config_.motion_noise_scale);
+  actions.insert(action);
+  s.pending.Reset();
+  mrpt::obs::CSensoryFrame frame;
+  frame.insert(std::make_shared<mrpt::obs::CObservation2DRangeScan>(mb::ToMrptScan(scan, s.sigma_range_m)));
+  s.builder->processActionObservation(actions, frame);
+  std::deque<mrpt::math::TPose3D> path;
+  s.builder->getCurrentMostLikelyPath(path);
+  if (path.size() > s.step_t_s.size()) {  // MRPT ran a filter step on this scan
+    s.step_t_s.resize(path.size(), scan.t_s);
+    s.estimate.diagnostics["neff"].push_back({scan.t_s, s.builder->mapPDF.ESS() * config_.particles});
+  }
+}
+
+Estimate MrptRbpfSlam::Finish() {
+  State& s = *state_;
+  std::deque<mrpt::math::TPose3D> path;
+  s.builder->getCurrentMostLikelyPath(path);
+  for (size_t k = 0; k < path.size() && k < s.step_t_s.size(); ++k) {
+    const SE2 pose_start(path[k].x, path[k].y, path[k].yaw);
+    const PoseEstimate pe{s.step_t_s[k], mb::ToWorld(s.start, pose_start), Eigen::Matrix3d::Zero(), false};
+    if (!s.estimate.trajectory.empty() && s.estimate.trajectory.back().t_s == pe.t_s)
+      s.estimate.trajectory.back() = pe;  // a filter step on a scan at t = 0 refines the start
+    else
+      s.estimate.trajectory.push_back(pe);
+  }
+  const auto* maps = s.builder->getCurrentlyBuiltMetricMap();
+  if (maps) {
+    const auto grid = maps->mapByClass<mrpt::maps::COccupancyGridMap2D>();
+    if (grid) {
+      for (unsigned iy = 0; iy < grid->getSizeY(); ++iy)
+        for (unsigned ix = 0; ix < grid->getSizeX(); ++ix)
+          if (grid->getCell(static_cast<int>(ix), static_cast<int>(iy)) < config_.occupied_below_free_prob)
+            s.estimate.map_points.push_back(s.start * Eigen::Vector2d(grid->idx2x(ix), grid->idx2y(iy)));
+    }
+  }
+  return std::move(s.estimate);
+}
+
+ModuleInfo MrptRbpfSlamModule() {
+  return MakeModuleInfo<MrptRbpfSlam, MrptRbpfSlamConfig>(
+      "mrpt-rbpf-slam", "MRPT 2.5 CMetricMapBuilderRBPF: grid-map Rao-Blackwellized particle filter from LIDAR",
+      {.odometry = true, .lidar = true}, &BindParams);
+}
+
+}  // namespace slambox
