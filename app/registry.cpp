@@ -7,6 +7,9 @@
 #include "slam/graphslam.hpp"
 #include "slam/icp_odometry.hpp"
 #include "slam/icp_poseslam.hpp"
+#include "slam/mrpt/mrpt_ekf_slam.hpp"
+#include "slam/mrpt/mrpt_icp_slam.hpp"
+#include "slam/mrpt/mrpt_rbpf_slam.hpp"
 
 namespace slambox {
 
@@ -19,6 +22,9 @@ const std::vector<ModuleInfo>& AllModules() {
       FastSlam2Module(),
       IcpOdometryModule(),
       IcpPoseSlamModule(),
+      MrptIcpSlamModule(),
+      MrptEkfSlamModule(),
+      MrptRbpfSlamModule(),
   };
   return modules;
 }
