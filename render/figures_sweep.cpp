@@ -62,17 +62,23 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
       hi = std::max({hi, g.whisker_hi, g.outliers.empty() ? g.whisker_hi : *std::max_element(g.outliers.begin(), g.outliers.end())});
     }
   if (!(lo <= hi)) return false;
-  Canvas c(1100, 660, 3);
-  const PlotArea area{112, 62, 1100 - 30, 660 - 110};
-  const Axes axes = MakeAxes(area, {0.0, static_cast<double>(sw.scenarios.size())}, NiceRange(std::min(0.0, lo), hi * 1.05));
+  Canvas c(1300, 660, 3);  // the legend sits right of the plot, never over a box
+  const PlotArea area{112, 62, 1300 - 230, 660 - 110};
+  // Errors spanning more than two decades (a diverged baseline beside cm-level SLAM) go
+  // on a log axis, so the small boxes stay readable.
+  const bool log_y = lo > 0 && hi / lo > 100;
+  const Eigen::Vector2d y_range = log_y ? Eigen::Vector2d(std::pow(10.0, std::floor(std::log10(lo))),
+                                                          std::pow(10.0, std::ceil(std::log10(hi * 1.0001))))
+                                        : NiceRange(std::min(0.0, lo), hi * 1.05);
+  const Axes axes = MakeAxes(area, {0.0, static_cast<double>(sw.scenarios.size())}, y_range, log_y);
+  const std::vector<double> yt = log_y ? LogTicks(axes.y0, axes.y1) : NiceTicks(axes.y0, axes.y1, 5);
   // Horizontal grid only: x is categorical.
-  for (double y : NiceTicks(axes.y0, axes.y1, 5)) {
+  for (double y : yt) {
     const double py = axes.ToPixel(0, y).y();
     c.Line({area.left, py}, {area.right, py}, {color::kGrid, 1.0, {}});
   }
   const double group_w = (area.right - area.left) / sw.scenarios.size();
   const double box_w = std::min(60.0, 0.8 * group_w / sw.algorithms.size());
-  std::vector<Eigen::Vector2d> pts;
   for (size_t s = 0; s < sw.scenarios.size(); ++s) {
     const double gx = area.left + (s + 0.5) * group_w;
     c.Text(gx, area.bottom + 12, sw.scenarios[s], {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kTop});
@@ -91,23 +97,20 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
                   {x - 0.5 * box_w, Y(g.q1)}, {x - 0.5 * box_w, Y(g.q3)}}, line);
       c.Line({x - 0.5 * box_w, Y(g.median)}, {x + 0.5 * box_w, Y(g.median)}, {col, 3.0, {}});
       for (double o : g.outliers) DrawMarker(c, {x, Y(o)}, MarkerShape::kRing, 8.0, col);
-      pts.push_back({x, Y(g.median)});
-      pts.push_back({x, Y(g.whisker_hi)});
     }
   }
   // Frame and y axis (x tick labels are the scenario names drawn above).
   Axes frame_axes = axes;
   c.Polyline({{area.left, area.top}, {area.right, area.top}, {area.right, area.bottom}, {area.left, area.bottom}, {area.left, area.top}},
              {color::kBlack, 1.2, {}});
-  const std::vector<double> yt = NiceTicks(axes.y0, axes.y1, 5);
   double max_w = 0;
   for (double y : yt) {
-    const std::string label = FormatTick(y, yt.size() > 1 ? yt[1] - yt[0] : 1.0);
+    const std::string label = FormatTick(y, log_y ? y : (yt.size() > 1 ? yt[1] - yt[0] : 1.0));
     max_w = std::max(max_w, TextWidth(label, kStyle.tick_px));
     c.Line({area.left - 6, axes.ToPixel(0, y).y()}, {area.left, axes.ToPixel(0, y).y()}, {color::kBlack, 1.2, {}});
     c.Text(area.left - 11, axes.ToPixel(0, y).y(), label, {.size_px = kStyle.tick_px, .h = HAlign::kRight, .v = VAlign::kMiddle});
   }
-  c.Text(area.left - 24 - max_w, 0.5 * (area.top + area.bottom), MetricLabel(metric),
+  c.Text(area.left - 24 - max_w, 0.5 * (area.top + area.bottom), MetricLabel(metric) + (log_y ? " (log scale)" : ""),
          {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
   c.Text(0.5 * (area.left + area.right), area.bottom + 50, "scenario", {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kTop});
   c.Text(0.5 * (area.left + area.right), area.top - 14, MetricLabel(metric) + " per module and scenario (all seeds" +
@@ -115,7 +118,7 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
   std::vector<LegendEntry> legend;
   for (size_t a = 0; a < sw.algorithms.size(); ++a)
     legend.push_back({.label = sw.algorithms[a], .line = {{}, 0.0, {}}, .patch = ModuleColor(sw.algorithms, a).WithAlpha(0.5)});
-  DrawLegend(c, frame_axes, legend, pts);
+  DrawLegendAt(c, area.right + 14, area.top, legend);
   SaveFigure(c, stem);
   return true;
 }

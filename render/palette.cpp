@@ -17,7 +17,11 @@ Rgba ModuleColor(const std::vector<std::string>& modules, size_t i) {
   if (modules.at(i) == "odometry") return color::kOrange;
   int k = 0;
   for (size_t j = 0; j < i; ++j) k += modules[j] != "odometry";
-  return SeriesColor(k % 5);  // orange (the 6th) stays odometry's
+  // Five Okabe-Ito hues (orange stays odometry's, black is ground truth), then the same
+  // hues darkened, so up to ten modules stay distinguishable.
+  const Rgba base = SeriesColor(k % 5);
+  if ((k / 5) % 2 == 0) return base;
+  return {0.55 * base.r, 0.55 * base.g, 0.55 * base.b, base.a};
 }
 
 Rgba Viridis(double u) {

@@ -131,7 +131,11 @@ SweepFolder ReadSweepFolder(const std::string& dir) {
     }
     sw.rows.push_back(std::move(row));
   }
-  // Fall back to the rows' own scenario / algorithm lists when sweep.json lacks them.
+  // Only algorithms that have rows (sweep.json may say `all`), in sweep.json's order, then
+  // the rows' own order; the same fallback for scenarios.
+  std::erase_if(sw.algorithms, [&](const std::string& a) {
+    return std::none_of(sw.rows.begin(), sw.rows.end(), [&](const auto& r) { return r.algorithm == a; });
+  });
   for (const auto& r : sw.rows) {
     if (std::find(sw.scenarios.begin(), sw.scenarios.end(), r.scenario) == sw.scenarios.end()) sw.scenarios.push_back(r.scenario);
     if (std::find(sw.algorithms.begin(), sw.algorithms.end(), r.algorithm) == sw.algorithms.end()) sw.algorithms.push_back(r.algorithm);
