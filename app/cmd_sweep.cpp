@@ -58,9 +58,8 @@ void Validate(const SweepSpec& spec, const std::vector<SweepRun>& runs) {
     if (!seen.insert(key).second) continue;
     const Overrides o = SplitOverrides(run.sets);
     const Scenario scenario = LoadScenario(run.scenario, o.scenario);
-    const auto names = ResolveAlgorithms(spec.algorithms, scenario.sensors);
+    ResolveAlgorithms(spec.algorithms, scenario.sensors, /*skip_unavailable=*/true);  // throws if none applies
     for (const auto& [name, params] : o.algo) FindModule(name).create(params);
-    (void)names;
   }
 }
 

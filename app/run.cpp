@@ -58,7 +58,8 @@ Stream LoadOrSimulate(const std::string& input, std::uint64_t seed, bool seed_gi
   return Simulate(LoadScenario(input, scenario_overrides), seed);
 }
 
-std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors) {
+std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors,
+                                           bool skip_unavailable) {
   std::vector<std::string> names;
   for (const auto& r : requested) {
     if (r == "all") {
@@ -67,6 +68,7 @@ std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& reque
       continue;
     }
     const ModuleInfo& m = FindModule(r);
+    if (!SensorsAllow(m, sensors) && skip_unavailable) continue;
     if (!SensorsAllow(m, sensors))
       throw InputError("--algo " + r, 0, "the stream lacks a sensor '" + r + "' needs",
                        "add the sensor to the scenario or pick another algorithm (see `slambox algorithms`)");
@@ -98,7 +100,7 @@ void WriteJson(const fs::path& path, const json& j) { WriteFileAtomic(path.strin
 json RunAndWrite(const RunRequest& request) {
   const Overrides overrides = SplitOverrides(request.sets);
   const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
-  const std::vector<std::string> names = ResolveAlgorithms(request.algorithms, stream.header.sensors);
+  const std::vector<std::string> names = ResolveAlgorithms(request.algorithms, stream.header.sensors, request.skip_unavailable);
   for (const auto& [name, fields] : overrides.algo) {
     FindModule(name);  // unknown module in --set is an error even when not run
     if (std::find(names.begin(), names.end(), name) == names.end())

@@ -37,12 +37,16 @@ struct RunRequest {
   std::string output_dir;
   bool figures = true;
   bool quiet = false;  ///< no progress lines on stderr
+  bool skip_unavailable = false;  ///< skip named modules whose sensors the stream lacks
 };
 
 /// Runs and writes the run folder; returns the metrics.json document.
 nlohmann::json RunAndWrite(const RunRequest& request);
 
-/// Module names for `--algo`: "all" expands to every module the sensors allow.
-std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors);
+/// Module names for `--algo`: "all" expands to every module the sensors allow. A named
+/// module the sensors do not allow is an error, or skipped with `skip_unavailable` (sweeps
+/// list modules once for scenarios with different sensors).
+std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors,
+                                           bool skip_unavailable = false);
 
 }  // namespace slambox

@@ -49,7 +49,8 @@ pid_t Launch(const SweepRun& run, const ExecOptions& o) {
   const std::string dir = RunDir(o.out_dir, run);
   fs::create_directories(dir);
   std::vector<std::string> args = {o.worker_exe, "run", run.scenario, "--seed", std::to_string(run.seed),
-                                   "--algo", Join(o.algorithms, ","), "-o", dir, "--no-figures", "-q"};
+                                   "--algo", Join(o.algorithms, ","), "-o", dir, "--no-figures", "-q",
+                                   "--skip-unavailable"};
   for (const auto& s : run.sets) {
     args.push_back("--set");
     args.push_back(s);
