@@ -57,14 +57,6 @@ std::mt19937_64 MakeGenerator(std::uint64_t seed, const std::string& name) {
   return std::mt19937_64(seq);
 }
 
-// Covariance of the odometry increment with rot1 and rot2 folded to the nearest of 0 and
-// pi (AMCL's treatment of Thrun's model): a tiny or backward translation decomposes
-// into rot1 ~ pi, rot2 ~ -pi, which must not count as two half turns of rotation noise.
-Eigen::Matrix3d FoldedIncrementCovariance(const OdometryIncrement& u, const std::array<double, 4>& alpha) {
-  auto fold = [](double a) { return std::min(std::abs(a), M_PI - std::abs(a)); };
-  return IncrementCovariance({fold(u.rot1), u.trans, fold(u.rot2)}, alpha);
-}
-
 }  // namespace
 
 FastSlam::FastSlam(const FastSlamConfig& config, bool fastslam2)
@@ -103,7 +95,8 @@ void FastSlam::Start(const StreamHeader& header) {
 
 void FastSlam::OnOdometry(const OdometryEvent& odometry) {
   const OdometryIncrement u = Decompose(odometry.delta);
-  const Eigen::Matrix3d M = config_.motion_noise_scale * FoldedIncrementCovariance(u, alpha_);
+  // Decompose folds backward motion, so a noisy in-place turn has rot1 near 0, not ±pi.
+  const Eigen::Matrix3d M = config_.motion_noise_scale * IncrementCovariance(u, alpha_);
   const Eigen::Vector3d sd = M.diagonal().cwiseSqrt();
   std::normal_distribution<double> n01(0.0, 1.0);
   for (FastSlamParticle& p : particles_) {
