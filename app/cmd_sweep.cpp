@@ -142,7 +142,7 @@ void Sweep(const SweepArgs& a) {
   WriteManifest(a.out_dir, spec);
   ExecOptions o;
   o.out_dir = a.out_dir;
-  o.worker_exe = a.worker_exe.empty() ? exe : a.worker_exe;
+  o.worker_exe = a.worker_exe;
   o.algorithms = spec.algorithms;
   o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.timeout_s = spec.timeout_s;

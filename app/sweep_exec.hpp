@@ -1,7 +1,8 @@
 #pragma once
 // Executes sweep runs in worker processes. Each run is `slambox run ... -o DIR/runs/<id>`
-// in its own process group: a crash or a hang (past the timeout) is recorded as
-// DIR/runs/<id>/failed.json and the sweep goes on. A run is complete when its
+// (done by a forked child of the sweep, or an exec'd worker) in its own process group:
+// a crash or a hang (past the timeout) is recorded as DIR/runs/<id>/failed.json and the
+// sweep goes on. A run is complete when its
 // metrics.json (written last, atomically, by `slambox run`) or failed.json exists, so a
 // sweep killed at any moment resumes where it stopped.
 #include <string>
@@ -13,7 +14,9 @@ namespace slambox {
 
 struct ExecOptions {
   std::string out_dir;
-  std::string worker_exe;  ///< the slambox binary (or a wrapper) that executes one run
+  /// A program run as `EXE run ...` for each run (a wrapper, or tests' fault injection);
+  /// empty: the forked sweep process runs it in-process (no exec).
+  std::string worker_exe;
   std::vector<std::string> algorithms;
   int jobs = 1;
   double timeout_s = 1800.0;
