@@ -180,6 +180,13 @@ void WriteSweepSummary(const std::string& out_dir, const SweepSpec& spec, const 
   // summary.md: one table per scenario, one row per cell.
   const Table table = LoadTable(out_dir + "/results.csv");
   const auto cells = CellValues(table);
+  std::map<std::string, std::pair<int, int>> counts;  // cell -> (ok, all runs)
+  const auto grid_columns = GridColumns(table);
+  for (const auto& row : table.rows) {
+    auto& [ok, all] = counts[CellKey(table, row, grid_columns)];
+    ++all;
+    ok += row[table.Column("status")] == "ok";
+  }
   std::ostringstream md;
   md << "# Sweep summary\n\n" << runs.size() << " runs (" << spec.scenarios.size() << " scenarios x "
      << runs.size() / std::max<std::size_t>(1, spec.scenarios.size() * spec.seeds.size()) << " grid points x "
@@ -203,9 +210,7 @@ void WriteSweepSummary(const std::string& out_dir, const SweepSpec& spec, const 
     }
     for (const auto& [key, values] : cells) {
       if (key.rfind(scenario + " |", 0) != 0) continue;
-      int ok = 0, all = 0;
-      for (const auto& row : table.rows)
-        if (CellKey(table, row, GridColumns(table)) == key) { ++all; ok += row[table.Column("status")] == "ok"; }
+      const auto [ok, all] = counts[key];
       // key = "scenario | k=v | ... | algorithm"
       const std::string rest = key.substr(scenario.size() + 3);
       const auto last = rest.rfind(" | ");
