@@ -3,6 +3,7 @@
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/random/RandomGenerators.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace slambox::mrpt_bridge {
@@ -47,6 +48,18 @@ void UseMrptThrunModel(mrpt::obs::CActionRobotMovement2D& action, const std::arr
   m.thrunModel.alfa4_trans_rot = static_cast<float>(scale * std::sqrt(alpha[3]));
 }
 
+void UseMrptGaussianModel(mrpt::obs::CActionRobotMovement2D& action, const std::array<double, 4>& alpha, double scale,
+                          const ActionNoiseFloor& floor) {
+  auto& m = action.motionModelConfiguration;
+  m.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
+  m.gaussianModel.a1 = scale * std::sqrt(alpha[2]);  // m per m
+  m.gaussianModel.a2 = scale * std::sqrt(alpha[3]);  // m per rad
+  m.gaussianModel.a3 = scale * std::sqrt(alpha[1]);  // rad per m
+  m.gaussianModel.a4 = scale * std::sqrt(alpha[0]);  // rad per rad
+  m.gaussianModel.minStdXY = floor.sigma_xy_m;
+  m.gaussianModel.minStdPHI = floor.sigma_theta_rad;
+}
+
 mrpt::obs::CObservation2DRangeScan ToMrptScan(const LaserScanEvent& scan, double sigma_range_m) {
   mrpt::obs::CObservation2DRangeScan out;
   const size_t n = scan.ranges_m.size();
@@ -65,6 +78,22 @@ mrpt::obs::CObservation2DRangeScan ToMrptScan(const LaserScanEvent& scan, double
     out.setScanRangeValidity(i, ok);
   }
   return out;
+}
+
+mrpt::obs::CObservation2DRangeScan ToMrptScanForGrid(const LaserScanEvent& scan, double sigma_range_m, int upsampling) {
+  const size_t k = static_cast<size_t>(std::max(1, upsampling));
+  LaserScanEvent fine;
+  fine.t_s = scan.t_s;
+  fine.range_max_m = scan.range_max_m;
+  fine.angle_min_rad = scan.angle_min_rad;
+  fine.angle_increment_rad = scan.angle_increment_rad / static_cast<double>(k);
+  fine.ranges_m.assign(scan.ranges_m.size() * k, scan.range_max_m);
+  fine.valid.assign(scan.ranges_m.size() * k, 0);
+  for (size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    fine.ranges_m[i * k] = scan.ranges_m[i];
+    fine.valid[i * k] = i < scan.valid.size() ? scan.valid[i] : 0;
+  }
+  return ToMrptScan(fine, sigma_range_m);
 }
 
 LaserScanEvent FromMrptScan(const mrpt::obs::CObservation2DRangeScan& scan, double t_s) {

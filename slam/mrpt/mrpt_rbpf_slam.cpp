@@ -1,6 +1,7 @@
 #include "slam/mrpt/mrpt_rbpf_slam.hpp"
 
 #include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/slam/CMetricMapBuilderRBPF.h>
@@ -23,7 +24,8 @@ void BindParams(MrptRbpfSlamConfig& c, ParamBinder& b) {
   b.Bind("likelihood_sigma_hit_m", c.likelihood_sigma_hit_m, "m", "likelihood-field std of a beam end point");
   b.Bind("likelihood_decimation", c.likelihood_decimation, "-", "use every n-th beam in the likelihood");
   b.Bind("icp_min_quality", c.icp_min_quality, "-", "optimal proposal: minimum scan-match quality, else odometry");
-  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on MRPT's Thrun-model stds (alpha_i = scale * sqrt(a_i))");
+  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on MRPT's Gaussian-model stds (scale * sqrt(a_i))");
+  b.Bind("grid_beam_upsampling", c.grid_beam_upsampling, "-", "invalid beams between real ones: bounds MRPT's grid-insertion angle error");
   b.Bind("occupied_below_free_prob", c.occupied_below_free_prob, "-", "grid cells with p(free) below this are map points");
 }
 
@@ -68,6 +70,7 @@ void MrptRbpfSlam::Start(const StreamHeader& header) {
   grid.max_x = grid.max_y = 10.0f;  // grows as scans are inserted
   grid.resolution = static_cast<float>(config_.grid_resolution_m);
   grid.insertionOpts.maxDistanceInsertion = 15.0f;
+  grid.insertionOpts.decimation = static_cast<uint16_t>(config_.grid_beam_upsampling);  // the valid beams only
   grid.likelihoodOpts.likelihoodMethod = mrpt::maps::COccupancyGridMap2D::lmLikelihoodField_Thrun;
   grid.likelihoodOpts.LF_stdHit = static_cast<float>(config_.likelihood_sigma_hit_m);
   grid.likelihoodOpts.LF_decimation = static_cast<uint32_t>(config_.likelihood_decimation);
@@ -90,11 +93,20 @@ void MrptRbpfSlam::OnLaserScan(const LaserScanEvent& scan) {
   const mb::ActionNoiseFloor floor{};
   if (s.pending.empty) s.pending.t_s = scan.t_s;  // MRPT asserts an action: a zero motion
   mrpt::obs::CActionRobotMovement2D action = mb::ToMrptAction(s.pending, floor);
-  mb::UseMrptThrunModel(action, s.alpha, config_.motion_noise_scale);
+  mb::UseMrptGaussianModel(action, s.alpha, config_.motion_noise_scale, floor);
   actions.insert(action);
   s.pending.Reset();
   mrpt::obs::CSensoryFrame frame;
-  frame.insert(std::make_shared<mrpt::obs::CObservation2DRangeScan>(mb::ToMrptScan(scan, s.sigma_range_m)));
+  auto obs = std::make_shared<mrpt::obs::CObservation2DRangeScan>(
+      mb::ToMrptScanForGrid(scan, s.sigma_range_m, config_.grid_beam_upsampling));
+  // The likelihood field scores the scan's cached point map, built on first use with a
+  // half-cell point spacing that drops most points of the sparse (upsampled) scan: build
+  // it here with every valid beam.
+  mrpt::maps::CPointsMap::TInsertionOptions points;
+  points.minDistBetweenLaserPoints = 0.0f;
+  points.isPlanarMap = true;
+  obs->buildAuxPointsMap<mrpt::maps::CPointsMap>(&points);
+  frame.insert(obs);
   s.builder->processActionObservation(actions, frame);
   std::deque<mrpt::math::TPose3D> path;
   s.builder->getCurrentMostLikelyPath(path);

@@ -2,11 +2,13 @@
 // `mrpt-rbpf-slam`: MRPT 2.5's CMetricMapBuilderRBPF with one occupancy grid per particle
 // (grid-map RBPF from LIDAR and odometry, Grisetti/Stachniss style). Odometry between
 // scans is one CActionRobotMovement2D; MRPT itself accumulates it until the robot has moved localize_lin_distance_m or
-// localize_ang_distance_deg, then re-derives the step's noise with its own Thrun model
-// (alphas from the stream's, see UseMrptThrunModel) and runs one particle-filter step.
-// Proposal:
-// "optimal" = pfOptimalProposal with scan matching against each particle's grid (MRPT's
-// gridmapping_optimal_sampling setup), "standard" = odometry sampling + likelihood field.
+// localize_ang_distance_deg, then re-derives the step's noise with its own Gaussian model
+// (stds from the stream's alphas, see UseMrptGaussianModel) and runs one particle-filter
+// step. Scans go in upsampled (ToMrptScanForGrid) so MRPT's grid insertion and its
+// likelihood field agree on beam angles. Proposal:
+// "standard" = odometry sampling + likelihood-field weights (default), "optimal" =
+// pfOptimalProposal with ICP against each particle's grid (MRPT's
+// gridmapping_optimal_sampling setup; diverges with the upsampled scan, see README).
 // The trajectory is the most likely particle's path at the filter steps (it changes as
 // particles are resampled, so it is read at Finish); map_points are that particle's
 // occupied grid cells.
@@ -18,7 +20,7 @@
 namespace slambox {
 
 struct MrptRbpfSlamConfig {
-  std::string proposal = "optimal";  ///< "optimal" (pfOptimalProposal) or "standard" (pfStandardProposal)
+  std::string proposal = "standard";  ///< "standard" (pfStandardProposal) or "optimal" (pfOptimalProposal)
   int particles = 10;
   double resample_ess_ratio = 0.5;       ///< resample when ESS / N drops below this (MRPT BETA)
   double grid_resolution_m = 0.05;
@@ -29,7 +31,8 @@ struct MrptRbpfSlamConfig {
   double likelihood_sigma_hit_m = 0.10;  ///< likelihood-field std (standard proposal)
   int likelihood_decimation = 5;         ///< use every n-th beam in the likelihood
   double icp_min_quality = 0.70;         ///< optimal proposal: below this, use odometry
-  double motion_noise_scale = 1.0;       ///< MRPT Thrun model: alpha_i = scale * sqrt(a_i) of the stream
+  double motion_noise_scale = 1.0;       ///< MRPT Gaussian model stds: scale * sqrt(a_i) of the stream
+  int grid_beam_upsampling = 16;         ///< see ToMrptScanForGrid: MRPT's grid insertion angle error / 16
   double occupied_below_free_prob = 0.3; ///< a cell is a map point when p(free) < this
 };
 void BindParams(MrptRbpfSlamConfig& c, ParamBinder& b);

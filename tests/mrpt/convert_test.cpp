@@ -1,7 +1,9 @@
 // Conversions at the MRPT edge: scans, odometry actions and bearing-range observations.
 #include <gtest/gtest.h>
 
+#include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/poses/CPoseRandomSampler.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
@@ -10,6 +12,7 @@
 #include <random>
 
 #include "slam/mrpt/mrpt_convert.hpp"
+#include "tests/support/synthetic_scan.hpp"
 
 namespace slambox {
 namespace {
@@ -43,8 +46,8 @@ std::vector<Eigen::Vector2d> OurPoints(const LaserScanEvent& s) {
   return pts;
 }
 
-void ExpectSamePointsThroughMrpt(const LaserScanEvent& scan) {
-  const auto obs = mb::ToMrptScan(scan, 0.01);
+void ExpectSamePointsThroughMrpt(const LaserScanEvent& scan, int grid_upsampling = 0) {
+  const auto obs = grid_upsampling > 0 ? mb::ToMrptScanForGrid(scan, 0.01, grid_upsampling) : mb::ToMrptScan(scan, 0.01);
   EXPECT_TRUE(obs.rightToLeft);
   mrpt::maps::CSimplePointsMap map;
   map.insertionOptions.minDistBetweenLaserPoints = 0.0f;
@@ -190,6 +193,61 @@ TEST(MrptConvert, CovarianceToWorldRotatesPositionBlock) {
   EXPECT_NEAR(w(0, 0), 1.0, 1e-12);  // start x is world y
   EXPECT_NEAR(w(1, 1), 4.0, 1e-12);
   EXPECT_NEAR(w(2, 2), 0.1, 1e-12);
+}
+
+TEST(MrptConvert, MrptGaussianModelStdsAreLinearInTheMotion) {
+  // A straight 1 m step: σ_xy = floor + scale·√a3·1 m, σ_φ = floor + scale·√a2·1 m.
+  mrpt::obs::CActionRobotMovement2D action;
+  const mb::ActionNoiseFloor floor{0.001, 0.002};
+  mb::UseMrptGaussianModel(action, {0.04, 0.01, 0.09, 0.16}, 2.0, floor);
+  action.computeFromOdometry(mrpt::poses::CPose2D(1.0, 0.0, 0.0), action.motionModelConfiguration);
+  const auto* g = dynamic_cast<const mrpt::poses::CPosePDFGaussian*>(action.poseChange.get());
+  ASSERT_NE(g, nullptr);
+  EXPECT_NEAR(std::sqrt(g->cov(0, 0)), 0.001 + 2.0 * 0.3, 1e-9);
+  EXPECT_GT(std::sqrt(g->cov(1, 1)), 0.601);  // plus MRPT's heading lever arm
+  EXPECT_NEAR(std::sqrt(g->cov(2, 2)), 0.002 + 2.0 * 0.1, 1e-9);
+  // Draws (what each RBPF particle gets) scatter with that std, not all the same value.
+  mb::SeedMrptRandom(3);
+  mrpt::poses::CPoseRandomSampler sampler;
+  sampler.setPosePDF(*action.poseChange);
+  double sum = 0, sum2 = 0;
+  const int n = 2000;
+  for (int i = 0; i < n; ++i) {
+    mrpt::poses::CPose2D p;
+    sampler.drawSample(p);
+    sum += p.x();
+    sum2 += p.x() * p.x();
+  }
+  const double std_x = std::sqrt(sum2 / n - (sum / n) * (sum / n));
+  EXPECT_NEAR(std_x, 0.601, 0.05);
+}
+
+TEST(MrptConvert, UpsampledGridScanGivesTheSamePointsInMrpt) {
+  ExpectSamePointsThroughMrpt(MakeScan(-M_PI, 2 * M_PI / 360, 360, 4), 16);
+  ExpectSamePointsThroughMrpt(MakeScan(-1.0, 0.01, 100, 5), 3);
+}
+
+TEST(MrptConvert, GridInsertionAndLikelihoodFieldAgreeOnHeading) {
+  // MRPT inserts beam i into a grid at yaw - aperture/2 + i·aperture/N but scores points at
+  // yaw - aperture/2 + i·aperture/(N-1). A grid built from one scan must score that same
+  // scan best at the pose it was inserted from, not half a beam step (0.5°) off.
+  std::mt19937_64 rng(6);
+  const LaserScanEvent scan = testing::RayCastScan(testing::RoomWalls(), SE2(1.013, 0.527, 0.3), 360, 0.0, rng);
+  auto obs = std::make_shared<mrpt::obs::CObservation2DRangeScan>(mb::ToMrptScanForGrid(scan, 0.01, 16));
+  mrpt::maps::CPointsMap::TInsertionOptions points;
+  points.minDistBetweenLaserPoints = 0.0f;
+  obs->buildAuxPointsMap<mrpt::maps::CPointsMap>(&points);
+  mrpt::maps::COccupancyGridMap2D grid(-10.0f, 10.0f, -10.0f, 10.0f, 0.05f);
+  grid.insertionOptions.decimation = 16;
+  grid.likelihoodOptions.likelihoodMethod = mrpt::maps::COccupancyGridMap2D::lmLikelihoodField_Thrun;
+  grid.likelihoodOptions.LF_stdHit = 0.05f;
+  grid.likelihoodOptions.LF_decimation = 1;
+  grid.insertObservation(*obs);
+  auto loglik = [&](double yaw_deg) {
+    return grid.computeObservationLikelihood(*obs, mrpt::poses::CPose3D(0, 0, 0, yaw_deg * M_PI / 180, 0, 0));
+  };
+  EXPECT_GT(loglik(0.0), loglik(0.5));
+  EXPECT_GT(loglik(0.0), loglik(-0.5));
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
-// mrpt-rbpf-slam in a room: deterministic for a seed; accuracy bounded near dead reckoning.
-// Known issue (see slam/mrpt/README.md): with this configuration MRPT's particle weights
-// stay nearly uniform (ESS/N ≈ 0.8-1), so the filter does not yet beat dead reckoning on
-// this stream; the bounds below catch a regression (frame, time or conversion errors
-// give metres of error, not centimetres).
+// mrpt-rbpf-slam in a room: deterministic for a seed; clearly better than dead reckoning
+// with drifty odometry. The bounds catch the two fixed faults (slam/mrpt/README.md): with
+// MRPT's Thrun motion PDF every particle got the same increment (no better than dead
+// reckoning), and without the upsampled scan the grid and the likelihood field disagree by
+// half a beam step (seed 7: 0.147 m against 0.082 m; seed 8: 0.244 m against 0.098 m).
 #include <gtest/gtest.h>
 
 #include "slam/mrpt/mrpt_rbpf_slam.hpp"
@@ -23,17 +23,23 @@ TEST(MrptRbpfSlam, DeterministicForAStream) {
   ExpectIdenticalTrajectories(RunRbpf(s), RunRbpf(s));
 }
 
-TEST(MrptRbpfSlam, StaysNearDeadReckoningAndMapsTheRoom) {
-  const Stream s = LidarStream(4.0, 7, kDriftyOdometry);
-  const Estimate e = RunRbpf(s);
-  ASSERT_GT(e.trajectory.size(), 20u);
-  const double rmse = Rmse(PositionErrors(e, s));
-  const double dr = DeadReckoningRmse(e, s);
-  EXPECT_LT(rmse, 2.0 * dr) << "rbpf " << rmse << " dead reckoning " << dr;  // measured 0.19 vs 0.13
-  EXPECT_LT(rmse, 0.25);
-  for (size_t k = 1; k < e.trajectory.size(); ++k) ASSERT_GT(e.trajectory[k].t_s, e.trajectory[k - 1].t_s);
-  EXPECT_GT(e.map_points.size(), 100u);
-  EXPECT_FALSE(e.diagnostics.at("neff").empty());
+TEST(MrptRbpfSlam, BeatsDeadReckoningAndMapsTheRoom) {
+  // The room is small and the odometry drifty: a wider likelihood field (0.2 m) than the
+  // default keeps enough particles alive between the in-place turns.
+  const ParamOverrides wide_field = {{"likelihood_sigma_hit_m", "0.2"}};
+  for (const std::uint64_t seed : {7u, 8u}) {
+    const Stream s = LidarStream(4.0, seed, kDriftyOdometry);
+    const Estimate e = RunRbpf(s, wide_field);
+    ASSERT_GT(e.trajectory.size(), 20u);
+    const double rmse = Rmse(PositionErrors(e, s));
+    const double dr = DeadReckoningRmse(e, s);
+    // measured: seed 7 0.082 m (dead reckoning 0.129 m), seed 8 0.098 m (0.189 m)
+    EXPECT_LT(rmse, 0.75 * dr) << "seed " << seed << " rbpf " << rmse << " dead reckoning " << dr;
+    EXPECT_LT(rmse, 0.11) << "seed " << seed;
+    for (size_t k = 1; k < e.trajectory.size(); ++k) ASSERT_GT(e.trajectory[k].t_s, e.trajectory[k - 1].t_s);
+    EXPECT_GT(e.map_points.size(), 100u);
+    EXPECT_FALSE(e.diagnostics.at("neff").empty());
+  }
 }
 
 TEST(MrptRbpfSlam, ScanBeforeAnyOdometryIsAZeroMotionStep) {
@@ -52,7 +58,9 @@ TEST(MrptRbpfSlam, ScanBeforeAnyOdometryIsAZeroMotionStep) {
   ASSERT_GE(e.trajectory.size(), 2u);
   EXPECT_EQ(e.trajectory.front().t_s, 0.0);
   for (size_t k = 1; k < e.trajectory.size(); ++k) ASSERT_GT(e.trajectory[k].t_s, e.trajectory[k - 1].t_s);
-  EXPECT_LT(Rmse(PositionErrors(e, s)), 0.25);  // measured 0.12 (dead reckoning 0.03): see the known issue
+  // measured 0.098 (dead reckoning 0.03): on this short prefix the particles have little
+  // map to correct against, so their sampling noise dominates
+  EXPECT_LT(Rmse(PositionErrors(e, s)), 0.15);
 }
 
 }  // namespace
