@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "eval/statistics.hpp"
 
 namespace slambox {
 
@@ -44,13 +45,6 @@ std::string ReadText(const std::string& path) {
   return s.str();
 }
 
-double TQuantile975(int df) {
-  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
-                                 2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
-                                 2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
-  if (df < 1) return NAN;
-  return df <= 30 ? table[df - 1] : 1.960 + 2.4 / df;  // within 0.002 of the exact value past 30
-}
 
 struct Table {
   CsvRow header;
@@ -118,7 +112,7 @@ CellStats Summarize(std::vector<double> v) {
   s.std = s.n > 1 ? std::sqrt(ss / (s.n - 1)) : 0.0;
   std::sort(v.begin(), v.end());
   s.median = s.n % 2 ? v[s.n / 2] : 0.5 * (v[s.n / 2 - 1] + v[s.n / 2]);
-  const double half = s.n > 1 ? TQuantile975(s.n - 1) * s.std / std::sqrt(s.n) : 0.0;
+  const double half = s.n > 1 ? StudentT975(s.n - 1) * s.std / std::sqrt(s.n) : 0.0;
   s.ci95_low = s.mean - half;
   s.ci95_high = s.mean + half;
   return s;

@@ -26,6 +26,11 @@ ErrorStatistics ComputeStatistics(const std::vector<double>& errors);
 /// NaN for an empty array.
 double Percentile(std::vector<double> values, double q);
 
+/// Student-t 0.975 quantile for `dof` degrees of freedom (the half-width factor of a
+/// two-sided 95 % interval of a mean): table to 30, then 1.960 + 2.4/dof (within 0.002).
+/// NaN for dof < 1.
+double StudentT975(int dof);
+
 /// Writes `<prefix>_rmse<unit>`, `_mean`, `_median`, `_std`, `_min`, `_max` and
 /// `<prefix>_sse<sse_unit>` into `out`, null for an empty array. E.g. prefix "ate",
 /// unit "_m", sse_unit "_m2" gives ate_rmse_m ... ate_sse_m2.

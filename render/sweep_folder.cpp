@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "eval/statistics.hpp"
 #include "render/run_folder.hpp"
 
 namespace slambox::render {
@@ -36,14 +37,6 @@ double Quantile(const std::vector<double>& sorted, double p) {
   return sorted[lo] + (h - lo) * (sorted[hi] - sorted[lo]);
 }
 
-/// Student-t 0.975 quantile for dof degrees of freedom (table to 30, then 1.96 + 2.4/dof).
-double T975(int dof) {
-  static const double kTable[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
-                                  2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
-                                  2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
-  if (dof < 1) return NAN;
-  return dof <= 30 ? kTable[dof - 1] : 1.960 + 2.4 / dof;
-}
 }  // namespace
 
 GroupStats Describe(std::vector<double> v) {
@@ -71,7 +64,7 @@ GroupStats Describe(std::vector<double> v) {
   if (s.n >= 2) {
     double ss = 0.0;
     for (double x : v) ss += (x - s.mean) * (x - s.mean);
-    s.ci95_half = T975(s.n - 1) * std::sqrt(ss / (s.n - 1)) / std::sqrt(static_cast<double>(s.n));
+    s.ci95_half = StudentT975(s.n - 1) * std::sqrt(ss / (s.n - 1)) / std::sqrt(static_cast<double>(s.n));
   }
   return s;
 }
