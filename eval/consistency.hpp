@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/se2.hpp"
-#include "eval/chi_square.hpp"
+#include "core/chi_square.hpp"
 
 namespace slambox {
 

@@ -6,7 +6,7 @@
 #include "eval/alignment.hpp"
 #include "eval/association.hpp"
 #include "eval/ate.hpp"
-#include "eval/chi_square.hpp"
+#include "core/chi_square.hpp"
 #include "eval/consistency.hpp"
 #include "eval/cost.hpp"
 #include "eval/relation_metric.hpp"

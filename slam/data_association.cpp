@@ -5,20 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#include "core/chi_square.hpp"
 #include "slam/range_bearing.hpp"
 
 namespace slambox {
-
-double Chi2Quantile(int dof, double probability) {
-  // Normal quantile by bisection on Phi(x) = erfc(-x / sqrt 2) / 2.
-  double lo = -10.0, hi = 10.0;
-  for (int i = 0; i < 100; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (0.5 * std::erfc(-mid / std::sqrt(2.0)) < probability ? lo : hi) = mid;
-  }
-  const double z = 0.5 * (lo + hi), k = dof, c = 2.0 / (9.0 * k);
-  return k * std::pow(1.0 - c + z * std::sqrt(c), 3);
-}
 
 double MahalanobisSquared(const EkfSlamState& s, int index, const Eigen::Vector2d& z, const Eigen::Matrix2d& R) {
   const ObservationPrediction p = PredictObservation(s.Pose(), s.Landmark(index));
@@ -120,7 +110,7 @@ struct JcbbSearch {
       if (used[j]) continue;
       current.emplace_back(static_cast<int>(i), j);
       const int dof = 2 * static_cast<int>(current.size());
-      if (JointMahalanobisSquared(s, z, R, current) < Chi2Quantile(dof, gates.joint_probability)) {
+      if (JointMahalanobisSquared(s, z, R, current) < ChiSquareQuantile(gates.joint_probability, dof)) {
         used[j] = true;
         Recurse(i + 1);
         used[j] = false;

@@ -48,8 +48,5 @@ Association AssociateJcbb(const EkfSlamState& state, const std::vector<Eigen::Ve
 double JointMahalanobisSquared(const EkfSlamState& state, const std::vector<Eigen::Vector2d>& z,
                                const Eigen::Matrix2d& R, const std::vector<std::pair<int, int>>& pairs);
 
-/// Chi-square quantile (Wilson & Hilferty 1931 cube-root normal approximation; relative
-/// error < 1% for dof >= 2 at p in [0.9, 0.999]).
-double Chi2Quantile(int dof, double probability);
 
 }  // namespace slambox

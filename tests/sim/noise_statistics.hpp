@@ -5,16 +5,12 @@
 #include <cmath>
 #include <vector>
 
+#include "core/chi_square.hpp"
+
 namespace slambox::testing {
 
-/// Chi-square quantile for k degrees of freedom (Wilson & Hilferty 1931), z = normal quantile.
-inline double ChiSquareQuantile(double k, double z) {
-  const double a = 2.0 / (9.0 * k);
-  return k * std::pow(1.0 - a + z * std::sqrt(a), 3.0);
-}
-
 /// Mean within 4 sigma / sqrt(n) of `mean`, and (n-1) s^2 / sigma^2 inside the two-sided
-/// 99.9% chi-square interval (z = 3.29).
+/// 99.9% chi-square interval.
 inline void ExpectGaussian(const std::vector<double>& samples, double mean, double sigma, const char* what) {
   const double n = static_cast<double>(samples.size());
   double sum = 0.0;
@@ -24,8 +20,8 @@ inline void ExpectGaussian(const std::vector<double>& samples, double mean, doub
   for (double v : samples) ss += (v - m) * (v - m);
   EXPECT_NEAR(m, mean, 4.0 * sigma / std::sqrt(n)) << what;
   const double statistic = ss / (sigma * sigma);
-  EXPECT_GT(statistic, ChiSquareQuantile(n - 1, -3.29)) << what << ": sample std " << std::sqrt(ss / (n - 1));
-  EXPECT_LT(statistic, ChiSquareQuantile(n - 1, 3.29)) << what << ": sample std " << std::sqrt(ss / (n - 1));
+  EXPECT_GT(statistic, ChiSquareQuantile(0.0005, n - 1)) << what << ": sample std " << std::sqrt(ss / (n - 1));
+  EXPECT_LT(statistic, ChiSquareQuantile(0.9995, n - 1)) << what << ": sample std " << std::sqrt(ss / (n - 1));
 }
 
 /// A count from n Bernoulli(p) trials within 4 standard deviations.

@@ -1,5 +1,6 @@
 // Data association: two-gate nearest neighbour and JCBB on crafted states, and the
 // chi-square quantile against tabulated values.
+#include "core/chi_square.hpp"
 #include "slam/data_association.hpp"
 
 #include <gtest/gtest.h>
@@ -46,7 +47,7 @@ TEST(DataAssociation, JcbbFindsTheJointlyCompatibleHypothesisWhereNearestNeighbo
   const Association jcbb = AssociateJcbb(s, z, kR, gates);
   EXPECT_EQ(jcbb.landmark[0], 0);
   EXPECT_EQ(jcbb.landmark[1], 1);
-  EXPECT_LT(JointMahalanobisSquared(s, z, kR, {{0, 0}, {1, 1}}), Chi2Quantile(4, 0.99));
+  EXPECT_LT(JointMahalanobisSquared(s, z, kR, {{0, 0}, {1, 1}}), ChiSquareQuantile(0.99, 4));
   EXPECT_GT(JointMahalanobisSquared(s, z, kR, {{0, 1}, {1, 0}}), 100.0);
 }
 
@@ -77,11 +78,11 @@ TEST(DataAssociation, EmptyMapMakesEveryObservationNew) {
 }
 
 TEST(DataAssociation, Chi2QuantileMatchesTables) {
-  EXPECT_NEAR(Chi2Quantile(2, 0.99), 9.210, 0.05);
-  EXPECT_NEAR(Chi2Quantile(2, 0.95), 5.991, 0.06);
-  EXPECT_NEAR(Chi2Quantile(4, 0.95), 9.488, 0.05);
-  EXPECT_NEAR(Chi2Quantile(10, 0.99), 23.209, 0.05);
-  EXPECT_NEAR(Chi2Quantile(30, 0.975), 46.979, 0.05);
+  EXPECT_NEAR(ChiSquareQuantile(0.99, 2), 9.210, 0.05);
+  EXPECT_NEAR(ChiSquareQuantile(0.95, 2), 5.991, 0.06);
+  EXPECT_NEAR(ChiSquareQuantile(0.95, 4), 9.488, 0.05);
+  EXPECT_NEAR(ChiSquareQuantile(0.99, 10), 23.209, 0.05);
+  EXPECT_NEAR(ChiSquareQuantile(0.975, 30), 46.979, 0.05);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "eval/chi_square.hpp"
+#include "core/chi_square.hpp"
 
 #include <gtest/gtest.h>
 
