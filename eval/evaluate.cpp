@@ -137,7 +137,7 @@ void AddMaps(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, j
   const char* keys[] = {"grid_cell_error", "grid_known_cells", "grid_mean_nearest_occupied_m",
                         "grid_mean_truth_to_estimate_m"};
   for (const char* k : keys) m[k] = nullptr;
-  if (!est.grid || est.grid->width <= 0 || est.grid->height <= 0) return;
+  if (!est.grid || est.grid->width <= 0 || est.grid->height <= 0 || !(est.grid->resolution_m > 0.0)) return;
   const GridMapResult g = EvaluateGridMap(*est.grid, gt.world, o.grid);
   m["grid_cell_error"] = NumberOrNull(g.cell_error);
   m["grid_known_cells"] = g.known_cells;
