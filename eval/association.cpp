@@ -79,8 +79,8 @@ Association Associate(const std::vector<StampedPose>& gt, const std::vector<Stam
       int lower = 0;
       double u = 0.0;
       if (!InterpolatePose(gt, est[i].t_s, pose, lower, u)) continue;
-      const double d = u == 0.0 ? gt_distance[lower] : gt_distance[lower] + u * (gt_distance[lower + 1] - gt_distance[lower]);
-      add(i, pose, d);
+      const double d0 = gt_distance[lower];
+      add(i, pose, u == 0.0 ? d0 : d0 + u * (gt_distance[lower + 1] - d0));
     }
     return out;
   }

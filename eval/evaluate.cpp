@@ -27,11 +27,17 @@ json NumberArray(const std::vector<double>& v) {
 bool Finite(const SE2& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta); }
 
 // Pose error metrics: ate_*, ate_aligned_*, heading_*, rpe_*, kitti_*, relation_*.
-void AddTrajectoryMetrics(const Association& a, const EvalOptions& o, const AlignmentResult& umeyama, json& m,
-                          json& series) {
-  std::vector<SE2> est = a.estimate;
-  if (o.align == AlignMode::kSE2 && umeyama.valid) est = TransformPoses(umeyama.T_gt_est, est);
-  if (o.align == AlignMode::kOrigin) est = TransformPoses(OriginAlignment(a.groundtruth.front(), est.front()), est);
+// The estimate moved by the requested alignment (none: unchanged).
+std::vector<SE2> AlignedEstimate(const Association& a, AlignMode mode, const AlignmentResult& umeyama) {
+  if (a.estimate.empty()) return {};
+  if (mode == AlignMode::kSE2 && umeyama.valid) return TransformPoses(umeyama.T_gt_est, a.estimate);
+  if (mode == AlignMode::kOrigin)
+    return TransformPoses(OriginAlignment(a.groundtruth.front(), a.estimate.front()), a.estimate);
+  return a.estimate;
+}
+
+void AddTrajectoryMetrics(const Association& a, const std::vector<SE2>& est, const EvalOptions& o,
+                          const AlignmentResult& umeyama, json& m, json& series) {
   const AbsoluteErrors ate = AbsoluteTrajectoryErrors(a.groundtruth, est);
   const std::vector<double> heading_deg = AbsDegrees(ate.heading_rad);
   AddStatistics(m, "ate", "_m", "_m2", ComputeStatistics(ate.translation_m));
@@ -131,7 +137,7 @@ void AddMaps(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, j
   const char* keys[] = {"grid_cell_error", "grid_known_cells", "grid_mean_nearest_occupied_m",
                         "grid_mean_truth_to_estimate_m"};
   for (const char* k : keys) m[k] = nullptr;
-  if (!est.grid || est.grid->width <= 0 || est.grid->height <= 0) return;
+  if (!est.grid || est.grid->width <= 0 || est.grid->height <= 0 || !(est.grid->resolution_m > 0.0)) return;
   const GridMapResult g = EvaluateGridMap(*est.grid, gt.world, o.grid);
   m["grid_cell_error"] = NumberOrNull(g.cell_error);
   m["grid_known_cells"] = g.known_cells;
@@ -188,9 +194,8 @@ Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const Ev
   m["distance_m"] = PathLength(gt.trajectory);
 
   const AlignmentResult umeyama = UmeyamaAlignment(a.estimate, a.groundtruth);
-  EvalOptions trajectory_options = o;
-  if (a.t_s.empty()) trajectory_options.align = AlignMode::kNone;  // nothing to align: every metric null
-  AddTrajectoryMetrics(a, trajectory_options, umeyama, m, series);
+  const std::vector<SE2> est_aligned = AlignedEstimate(a, o.align, umeyama);
+  AddTrajectoryMetrics(a, est_aligned, o, umeyama, m, series);
   AddConsistency(a, est, o, m, series);
   AddLandmarks(gt, est, o, umeyama, m, series);
   AddMaps(gt, est, o, m);
@@ -198,7 +203,7 @@ Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const Ev
   AddCost(gt, est, m);
 
   const DivergenceResult div = DetectDivergence(est.trajectory, a.estimate_index,
-                                                AbsoluteTrajectoryErrors(a.groundtruth, a.estimate).translation_m,
+                                                AbsoluteTrajectoryErrors(a.groundtruth, est_aligned).translation_m,
                                                 a.distance_m, o.divergence);
   if (div.diverged) {
     m["status"] = "diverged";

@@ -44,7 +44,9 @@ double Percentile(std::vector<double> values, double q) {
   if (values[lo] == values[hi]) return values[lo];
   // For the median of an even array (frac = 0.5) this is (a + b) / 2, as numpy.median.
   if (frac == 0.5) return (values[lo] + values[hi]) / 2.0;
-  return values[lo] + (values[hi] - values[lo]) * frac;
+  // numpy's _lerp: interpolate from the nearer end.
+  const double diff = values[hi] - values[lo];
+  return frac >= 0.5 ? values[hi] - diff * (1.0 - frac) : values[lo] + diff * frac;
 }
 
 nlohmann::json NumberOrNull(double value) {

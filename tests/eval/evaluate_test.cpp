@@ -104,6 +104,12 @@ TEST(Evaluate, AlignModesAndLandmarks) {
   EXPECT_EQ(m["landmark_missed"], 0);
   o.align = AlignMode::kOrigin;
   EXPECT_NEAR(EvaluateEstimate(gt, est, o).metrics["ate_rmse_m"].get<double>(), 0.0, 1e-9);
+
+  // A trajectory from another tool in its own far-away frame: runaway unless aligned.
+  Estimate foreign = Copy(gt);
+  for (auto& p : foreign.trajectory) p.pose = SE2(500, 300, 2.0) * p.pose;
+  EXPECT_EQ(EvaluateEstimate(gt, foreign).metrics["status"], "diverged");
+  EXPECT_EQ(EvaluateEstimate(gt, foreign, o).metrics["status"], "ok");
 }
 
 TEST(Evaluate, DivergenceIsReportedAsData) {
