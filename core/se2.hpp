@@ -54,6 +54,19 @@ SE2 Exp(const Eigen::Vector3d& xi);
 /// Logarithm, inverse of Exp for |theta| < pi.
 Eigen::Vector3d Log(const SE2& T);
 
+/// Jacobians of the composition C = A * B over (x, y, theta) coordinates:
+/// dC = J_a dA + J_b dB, with J_a = [I, R_A (-b_y, b_x)^T; 0, 1] and J_b = diag(R_A, 1).
+struct ComposeJacobians {
+  Eigen::Matrix3d J_a;
+  Eigen::Matrix3d J_b;
+};
+ComposeJacobians ComposeJacobian(const SE2& A, const SE2& B);
+
+/// First-order covariance of A * B for independent A ~ (A, cov_a), B ~ (B, cov_b):
+/// J_a cov_a J_a^T + J_b cov_b J_b^T.
+Eigen::Matrix3d ComposeCovariance(const SE2& A, const Eigen::Matrix3d& cov_a, const SE2& B,
+                                  const Eigen::Matrix3d& cov_b);
+
 /// 3x3 adjoint: Ad(T) xi = Log(T Exp(xi) T^-1) to first order, for xi = (v_x, v_y, omega).
 Eigen::Matrix3d Adjoint(const SE2& T);
 

@@ -1,5 +1,7 @@
 #include "slam/icp_poseslam.hpp"
 
+#include <Eigen/LU>
+
 #include "core/error.hpp"
 #include "core/odometry_model.hpp"
 
@@ -41,6 +43,7 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("source_voxel_m", c.source_voxel_m, "m", "subsample scans (0 = off)");
   b.Bind("map_voxel_m", c.map_voxel_m, "m", "voxel size of the output map points");
   b.Bind("grid_resolution_m", c.grid_resolution_m, "m", "occupancy grid cell size (0 = no grid)");
+  b.Bind("compute_covariance", c.compute_covariance, "-", "pose covariances (graph marginals + relative ICP/odometry)");
 }
 
 IcpPoseSlam::IcpPoseSlam(const IcpPoseSlamConfig& config)
@@ -62,12 +65,17 @@ IcpPoseSlam::IcpPoseSlam(const IcpPoseSlamConfig& config)
   solve_options_.max_iterations = config.solve_max_iterations;
 }
 
+InformationCaps IcpPoseSlam::Caps() const {
+  return {config_.info_cap_sigma_xy_m, config_.info_cap_sigma_theta_deg * kDegToRad};
+}
+
 void IcpPoseSlam::Start(const StreamHeader& header) {
   estimate_ = Estimate{};
   start_pose_ = header.start_pose;
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
   T_kf_robot_ = T_kf_last_scan_ = start_pose_;  // before the first keyframe: absolute
   odometry_cov_.setZero();
+  relative_cov_.setZero();
   path_m_ = 0.0;
   keyframes_.clear();
   graph_ = PoseGraph{};
@@ -83,14 +91,15 @@ void IcpPoseSlam::Start(const StreamHeader& header) {
 void IcpPoseSlam::RecordPose(double t_s) {
   const int kf = static_cast<int>(keyframes_.size()) - 1;
   if (!records_.empty() && records_.back().t_s == t_s) records_.pop_back();
-  records_.push_back({t_s, kf, T_kf_robot_});
+  records_.push_back({t_s, kf, T_kf_robot_, relative_cov_});
 }
 
 void IcpPoseSlam::OnOdometry(const OdometryEvent& odometry) {
   const OdometryIncrement u = Decompose(odometry.delta);
   const MotionPrediction p = PredictMotion(T_kf_robot_, u);
-  odometry_cov_ = p.J_pose_pose * odometry_cov_ * p.J_pose_pose.transpose() +
-                  p.J_pose_increment * IncrementCovariance(u, alpha_) * p.J_pose_increment.transpose();
+  const Eigen::Matrix3d M = p.J_pose_increment * IncrementCovariance(u, alpha_) * p.J_pose_increment.transpose();
+  odometry_cov_ = p.J_pose_pose * odometry_cov_ * p.J_pose_pose.transpose() + M;
+  relative_cov_ = p.J_pose_pose * relative_cov_ * p.J_pose_pose.transpose() + M;
   T_kf_robot_ = p.pose;
   path_m_ += odometry.delta.translation().norm();
   RecordPose(odometry.t_s);
@@ -110,6 +119,7 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
   if (ok) {
     if (config_.adaptive_gate) UpdateThreshold(gate_, T_kf_last_scan_.inverse() * guess, T_kf_last_scan_.inverse() * r.T_target_source);
     T_kf_robot_ = r.T_target_source;
+    if (config_.compute_covariance) relative_cov_ = IcpEdgeInformation(r, odometry_cov_, Caps()).inverse();
   }
   auto& d = estimate_.diagnostics;
   d["icp_iterations"].emplace_back(scan.t_s, r.iterations);
@@ -133,8 +143,7 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
     e.T_from_to = T_kf_robot_;
     e.information = config_.edge_information == "fixed"
                         ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
-                        : IcpEdgeInformation(*edge_icp, odometry_cov_,
-                                             {config_.info_cap_sigma_xy_m, config_.info_cap_sigma_theta_deg * kDegToRad});
+                        : IcpEdgeInformation(*edge_icp, odometry_cov_, Caps());
     graph_.edges.push_back(e);
     loop_record_of_edge_.push_back(-1);
   }
@@ -147,6 +156,7 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
   keyframes_.push_back({scan.t_s, std::move(points), std::move(geometry), path_m_, std::nullopt});
   T_kf_robot_ = T_kf_last_scan_ = SE2();
   odometry_cov_.setZero();
+  relative_cov_.setZero();
   RecordPose(scan.t_s);
   if (k > 0) CloseLoops(scan.t_s);
 }
@@ -171,8 +181,7 @@ void IcpPoseSlam::CloseLoops(double t_s) {
     e.T_from_to = r.T_target_source;
     e.information = config_.edge_information == "fixed"
                         ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
-                        : IcpEdgeInformation(r, 1e6 * Eigen::Matrix3d::Identity(),
-                                             {config_.info_cap_sigma_xy_m, config_.info_cap_sigma_theta_deg * kDegToRad});
+                        : IcpEdgeInformation(r, 1e6 * Eigen::Matrix3d::Identity(), Caps());
     e.loop_closure = true;
     graph_.edges.push_back(e);
     loop_record_of_edge_.push_back(static_cast<int>(estimate_.loop_closures.size()) - 1);
@@ -183,8 +192,10 @@ void IcpPoseSlam::CloseLoops(double t_s) {
   if (added) Solve();
 }
 
-void IcpPoseSlam::Solve() {
-  const PoseGraphSolveResult s = SolvePoseGraph(graph_, solve_options_);
+PoseGraphSolveResult IcpPoseSlam::Solve(bool marginals) {
+  PoseGraphSolveOptions options = solve_options_;
+  options.compute_marginals = marginals;
+  PoseGraphSolveResult s = SolvePoseGraph(graph_, options);
   int accepted = 0;
   for (size_t i = 0; i < graph_.edges.size(); ++i) {
     const int rec = loop_record_of_edge_[i];
@@ -196,13 +207,24 @@ void IcpPoseSlam::Solve() {
   const double t = keyframes_.back().t_s;
   estimate_.diagnostics["loop_closures_accepted"].emplace_back(t, accepted);
   estimate_.diagnostics["pose_graph_chi2"].emplace_back(t, s.chi2_final);
+  return s;
 }
 
 Estimate IcpPoseSlam::Finish() {
-  if (keyframes_.size() > 1) Solve();
+  std::vector<Eigen::Matrix3d> marginals;
+  if (keyframes_.size() > 1) marginals = Solve(config_.compute_covariance).marginal_covariances;
+  else if (keyframes_.size() == 1) marginals.assign(1, Eigen::Matrix3d::Zero());  // the anchor alone
+  const bool with_cov = config_.compute_covariance && marginals.size() == keyframes_.size();
   for (const Record& r : records_) {
-    const SE2 pose = r.keyframe < 0 ? r.T_kf_robot : graph_.poses[static_cast<size_t>(r.keyframe)] * r.T_kf_robot;
-    estimate_.trajectory.push_back(PoseEstimate{r.t_s, pose, Eigen::Matrix3d::Zero(), false});
+    PoseEstimate e{r.t_s, r.T_kf_robot, r.covariance, with_cov || r.keyframe < 0};
+    if (r.keyframe >= 0) {
+      const size_t k = static_cast<size_t>(r.keyframe);
+      e.pose = graph_.poses[k] * r.T_kf_robot;
+      if (with_cov) e.covariance = ComposeCovariance(graph_.poses[k], marginals[k], r.T_kf_robot, r.covariance);
+    }
+    e.has_covariance = e.has_covariance && config_.compute_covariance;
+    if (!e.has_covariance) e.covariance.setZero();
+    estimate_.trajectory.push_back(e);
   }
   std::vector<Eigen::Vector2d> all;
   std::vector<std::vector<Eigen::Vector2d>> scans;

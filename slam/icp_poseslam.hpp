@@ -5,7 +5,11 @@
 // or fixed). Loop-closure candidates (slam/loop_closure.hpp) are verified by ICP and the
 // graph is re-solved with Ceres (slam/pose_graph.hpp), a robust kernel on loop edges.
 // Output: keyframes optimized, every other pose re-anchored to its keyframe; map points
-// and an occupancy grid at the optimized keyframes.
+// and an occupancy grid at the optimized keyframes. Pose covariances: the keyframe's
+// marginal from the pose graph (Laplace approximation at the solution) composed with the
+// pose's covariance relative to its keyframe (the ICP edge covariance at scans, grown by
+// the odometry model between them). Both rest on the capped, Hessian-based ICP
+// information, so they are as optimistic as that is (Censi 2007).
 #include <optional>
 
 #include "core/slam_module.hpp"
@@ -41,6 +45,7 @@ struct IcpPoseSlamConfig {
   double source_voxel_m = 0.0;           ///< [m] subsample scans (0 = every valid beam)
   double map_voxel_m = 0.05;             ///< [m] voxel size of Estimate::map_points
   double grid_resolution_m = 0.05;       ///< [m] occupancy grid cell (0 = no grid)
+  bool compute_covariance = true;        ///< pose covariances for NEES (one ceres::Covariance at the end)
 };
 void BindParams(IcpPoseSlamConfig& c, ParamBinder& b);
 
@@ -64,11 +69,13 @@ class IcpPoseSlam : public SlamModule {
     double t_s = 0.0;
     int keyframe = -1;
     SE2 T_kf_robot;
+    Eigen::Matrix3d covariance;  ///< of T_kf_robot (absolute before the first keyframe)
   };
   void RecordPose(double t_s);
   void AddKeyframe(const LaserScanEvent& scan, ScanPoints points, const IcpResult* edge_icp);
   void CloseLoops(double t_s);
-  void Solve();
+  PoseGraphSolveResult Solve(bool marginals = false);
+  InformationCaps Caps() const;
 
   IcpPoseSlamConfig config_;
   IcpConfig icp_, loop_icp_;
@@ -79,6 +86,7 @@ class IcpPoseSlam : public SlamModule {
   SE2 T_kf_robot_;                 ///< current pose relative to the latest keyframe
   SE2 T_kf_last_scan_;             ///< the previous scan's pose relative to the latest keyframe
   Eigen::Matrix3d odometry_cov_ = Eigen::Matrix3d::Zero();  ///< of T_kf_robot_ by the motion model
+  Eigen::Matrix3d relative_cov_ = Eigen::Matrix3d::Zero();  ///< of T_kf_robot_: ICP at scans, odometry after
   double path_m_ = 0.0;
   IcpTarget keyframe_target_;
   std::vector<Keyframe> keyframes_;

@@ -81,6 +81,28 @@ void ValidateGraph(const PoseGraph& graph, const PoseGraphSolveOptions& options,
   }
 }
 
+// Diagonal blocks of the inverse of J^T J at the solution: the marginal covariance of each
+// pose under the Gaussian (Laplace) approximation of the posterior, the anchor fixed.
+std::vector<Eigen::Matrix3d> MarginalCovariances(ceres::Problem& problem, std::vector<double>& x, size_t anchor) {
+  const size_t n = x.size() / 3;
+  std::vector<Eigen::Matrix3d> out(n, Eigen::Matrix3d::Zero());
+  std::vector<std::pair<const double*, const double*>> blocks;
+  for (size_t i = 0; i < n; ++i)
+    if (i != anchor && problem.HasParameterBlock(&x[3 * i])) blocks.emplace_back(&x[3 * i], &x[3 * i]);
+  if (blocks.empty()) return out;
+  ceres::Covariance::Options cov_options;
+  cov_options.algorithm_type = ceres::SPARSE_QR;
+  cov_options.num_threads = 1;
+  ceres::Covariance covariance(cov_options);
+  if (!covariance.Compute(blocks, &problem)) return {};
+  for (const auto& [block, same] : blocks) {
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> C;
+    covariance.GetCovarianceBlock(block, block, C.data());
+    out[static_cast<size_t>(block - x.data()) / 3] = C;
+  }
+  return out;
+}
+
 }  // namespace
 
 PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOptions& options) {
@@ -151,6 +173,7 @@ PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOption
       result.edge_weights[k] = rho[1];
     }
   }
+  if (options.compute_marginals && result.usable) result.marginal_covariances = MarginalCovariances(problem, x, a);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -31,6 +31,9 @@ struct PoseGraphSolveOptions {
   double kernel_scale = 1.0;  ///< Huber/Cauchy scale on the whitened residual; DCS's Phi
   int max_iterations = 100;
   int num_threads = 1;
+  /// Also compute every pose's marginal covariance at the solution (ceres::Covariance,
+  /// sparse QR; the robust kernels' weights included). Costs about one more solve.
+  bool compute_marginals = false;
 };
 
 struct PoseGraphSolveResult {
@@ -44,6 +47,10 @@ struct PoseGraphSolveResult {
   /// (the IRLS weight on its chi2; DCS: k^2; 1 = full trust, ~0 = rejected; 1 for
   /// odometry edges and without a kernel).
   std::vector<double> edge_weights;
+  /// With compute_marginals: per pose, its 3x3 marginal covariance over (x, y, theta)
+  /// given all edges, the anchor held fixed (zero for the anchor and unconnected poses).
+  /// Empty when not requested or when Ceres could not compute it (rank-deficient).
+  std::vector<Eigen::Matrix3d> marginal_covariances;
 };
 
 /// The edge error e above for poses T_i, T_j and measurement T_ij.

@@ -1,6 +1,7 @@
 #pragma once
 // Test support for the ICP modules: a synthetic ring corridor with pillars, its stream,
 // and the position RMSE of an estimate against ground truth at shared timestamps.
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <map>
 
@@ -55,6 +56,26 @@ inline double PositionRmse(const Estimate& e, const Stream& s) {
     ++n;
   }
   return n ? std::sqrt(sum / n) : INFINITY;
+}
+
+/// Mean NEES (3 dof) of the poses that carry a covariance, at the ground-truth times they
+/// share; poses with a singular covariance (the known start) are skipped. NaN if none.
+inline double PoseAnees(const Estimate& e, const Stream& s) {
+  std::map<double, SE2> gt;
+  for (const auto& g : s.groundtruth) gt[g.t_s] = g.pose;
+  double sum = 0;
+  int n = 0;
+  for (const auto& p : e.trajectory) {
+    auto it = gt.find(p.t_s);
+    if (it == gt.end() || !p.has_covariance) continue;
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(p.covariance);
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-14)) continue;
+    const Eigen::Vector3d d(p.pose.x - it->second.x, p.pose.y - it->second.y,
+                            NormalizeAngle(p.pose.theta - it->second.theta));
+    sum += d.dot(ldlt.solve(d));
+    ++n;
+  }
+  return n ? sum / n : NAN;
 }
 
 inline Estimate RunModule(const ModuleInfo& info, const Stream& s, const ParamOverrides& overrides = {}) {

@@ -2,6 +2,7 @@
 // and accepted, map and graph filled, accuracy far better than wheel odometry.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cstdio>
 
 #include "core/error.hpp"
@@ -33,6 +34,31 @@ TEST(IcpPoseSlam, AccurateOnTwoLapRingWithLoopClosures) {
   EXPECT_GT(est.pose_graph.nodes.size(), 50u);
   EXPECT_EQ(est.pose_graph.node_t_s.size(), est.pose_graph.nodes.size());
   EXPECT_TRUE(est.diagnostics.count("loop_closures_accepted"));
+}
+
+// Pose covariances: keyframe marginals of the pose graph composed with the covariance
+// relative to the keyframe. Loop closures make the second lap far more certain than
+// icp-odometry's open chain; NEES is plausible; compute_covariance=false drops them.
+TEST(IcpPoseSlam, CovarianceFromGraphMarginalsShrinksWithLoopClosures) {
+  const Stream s = testing::RingStream(11, 2);
+  const Estimate slam = testing::RunModule(IcpPoseSlamModule(), s);
+  const Estimate odo = testing::RunModule(IcpOdometryModule(), s);
+  ASSERT_TRUE(slam.trajectory.back().has_covariance);
+  const double slam_end = slam.trajectory.back().covariance.topLeftCorner<2, 2>().trace();
+  const double odo_end = odo.trajectory.back().covariance.topLeftCorner<2, 2>().trace();
+  std::printf("ring x2: final position variance icp-poseslam %.3g, icp-odometry %.3g m^2; ANEES %.2f\n", slam_end,
+              odo_end, testing::PoseAnees(slam, s));
+  EXPECT_LT(slam_end, odo_end / 4);
+  for (const PoseEstimate& p : slam.trajectory) {
+    ASSERT_TRUE(p.has_covariance);
+    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(p.covariance).eigenvalues().minCoeff(), -1e-12);
+  }
+  const double anees = testing::PoseAnees(slam, s);
+  EXPECT_GT(anees, 0.1);
+  EXPECT_LT(anees, 12.0);
+  const Estimate off = testing::RunModule(IcpPoseSlamModule(), s, {{"compute_covariance", "false"}});
+  EXPECT_FALSE(off.trajectory.back().has_covariance);
+  EXPECT_EQ(off.trajectory.back().pose.vector(), slam.trajectory.back().pose.vector());
 }
 
 TEST(IcpPoseSlam, DeterministicAndEveryParameterSettable) {
