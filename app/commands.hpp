@@ -17,5 +17,6 @@ void AddEvalCommand(CLI::App& app);        // eval
 void AddReportCommand(CLI::App& app);      // report
 void AddOptimizeCommand(CLI::App& app);    // optimize
 void AddSweepCommand(CLI::App& app);       // sweep
+void AddConvertCommand(CLI::App& app);     // convert carmen
 
 }  // namespace slambox

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   slambox::AddReportCommand(app);
   slambox::AddOptimizeCommand(app);
   slambox::AddSweepCommand(app);
+  slambox::AddConvertCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

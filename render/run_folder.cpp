@@ -77,7 +77,9 @@ RunFolder ReadRunFolder(const std::string& dir) {
   const fs::path world_path = fs::path(dir) / "world.json";
   if (fs::exists(world_path)) {
     run.world = Parsed(world_path.string(), [](const nlohmann::json& j) { return WorldFromJson(j.at("world")); });
-    run.has_world = true;
+    // A converted real log has an empty world: nothing true to draw.
+    const World& w = run.world;
+    run.has_world = !w.wall_segments.empty() || !w.wall_circles.empty() || !w.landmarks.empty() || !w.movers.empty();
   }
   const fs::path gt_path = fs::path(dir) / "groundtruth.tum";
   if (fs::exists(gt_path)) run.groundtruth = ReadTum(gt_path.string());

@@ -1,0 +1,238 @@
+#include "datasets/carmen_log.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "core/error.hpp"
+#include "datasets/compressed_file.hpp"
+
+namespace slambox {
+
+namespace {
+
+constexpr double kDefaultRangeMaxM = 80.0;
+
+struct OdometryPose {
+  double ts = 0.0;  ///< the log's ipc timestamp [s]
+  SE2 pose;         ///< robot in the odometry frame
+  int order = 0;    ///< file order, to keep ties stable
+};
+
+struct Scan {
+  double ts = 0.0;
+  double angle_min_rad = 0.0;
+  double angle_increment_rad = 0.0;
+  double range_max_m = 0.0;  ///< from ROBOTLASER1, else 0 (the default applies)
+  std::vector<double> ranges_m;
+  SE2 laser_pose, odometry_pose;
+  int line = 0;
+};
+
+// Whitespace-separated tokens of one line, parsed on demand with the line number for errors.
+class Tokens {
+ public:
+  Tokens(std::string_view line, const std::string& file, int line_number) : file_(file), line_(line_number) {
+    size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      const size_t start = i;
+      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      if (i > start) tokens_.emplace_back(line.substr(start, i - start));
+    }
+  }
+  size_t size() const { return tokens_.size(); }
+  const std::string& word(size_t i) const { return tokens_[i]; }
+  double Number(size_t i, const char* what) const {
+    if (i >= tokens_.size()) Fail(std::string("the line ends before ") + what);
+    char* end = nullptr;
+    const double v = std::strtod(tokens_[i].c_str(), &end);
+    if (end == tokens_[i].c_str() || *end != '\0' || !std::isfinite(v))
+      Fail(std::string(what) + " is '" + tokens_[i] + "', not a finite number");
+    return v;
+  }
+  int Count(size_t i, const char* what) const {
+    const double v = Number(i, what);
+    if (v < 0 || v != std::floor(v) || v > 100000) Fail(std::string(what) + " must be a whole count, got " + tokens_[i]);
+    return static_cast<int>(v);
+  }
+  /// The ipc timestamp: third token from the end (ts host logger_ts).
+  double Timestamp() const {
+    if (tokens_.size() < 4) Fail("the line ends before its timestamp (ts host logger_ts)");
+    return Number(tokens_.size() - 3, "the timestamp");
+  }
+  [[noreturn]] void Fail(const std::string& problem) const {
+    throw InputError(file_, line_, tokens_.empty() ? problem : tokens_[0] + ": " + problem,
+                     "fix or delete this line (format in the log's header comments; datasets/carmen_log.hpp)");
+  }
+
+ private:
+  std::vector<std::string> tokens_;
+  const std::string& file_;
+  int line_;
+};
+
+SE2 PoseAt(const Tokens& t, size_t i, const char* what) {
+  return SE2(t.Number(i, what), t.Number(i + 1, what), t.Number(i + 2, what));
+}
+
+// n beams over the field of view: odd n puts the ends at +-fov/2, even n steps fov/n.
+void FlaserGeometry(int n, double fov_rad, Scan& s) {
+  s.angle_increment_rad = n > 1 ? (n % 2 == 1 ? fov_rad / (n - 1) : fov_rad / n) : 0.0;
+  s.angle_min_rad = -0.5 * fov_rad;
+}
+
+struct ParsedLog {
+  std::vector<OdometryPose> odometry;
+  std::vector<Scan> scans;
+  std::map<std::string, double> params;
+};
+
+ParsedLog ParseLines(const std::string& text, const std::string& name, const CarmenImportOptions& o) {
+  ParsedLog log;
+  int line_number = 0, order = 0;
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view line(text.data() + pos, end - pos);
+    pos = end + 1;
+    ++line_number;
+    if (line.empty() || line[0] == '#') continue;
+    const Tokens t(line, name, line_number);
+    if (t.size() == 0) continue;
+    const std::string& kind = t.word(0);
+    if (kind == "ODOM") {
+      if (t.size() < 10) t.Fail("expected x y theta tv rv accel ts host logger_ts");
+      log.odometry.push_back({t.Timestamp(), PoseAt(t, 1, "the odometry pose"), order++});
+    } else if (kind == "FLASER") {
+      const int n = t.Count(1, "the number of readings");
+      if (t.size() != static_cast<size_t>(n) + 11)
+        t.Fail("expected " + std::to_string(n) + " readings, 6 pose values and ts host logger_ts (" +
+               std::to_string(n + 11) + " fields), found " + std::to_string(t.size()));
+      Scan s;
+      s.ts = t.Timestamp();
+      s.line = line_number;
+      FlaserGeometry(n, o.fov_deg * M_PI / 180.0, s);
+      for (int i = 0; i < n; ++i) s.ranges_m.push_back(t.Number(2 + i, "a range reading"));
+      s.laser_pose = PoseAt(t, 2 + n, "the laser pose");
+      s.odometry_pose = PoseAt(t, 5 + n, "the odometry pose");
+      log.odometry.push_back({s.ts, s.odometry_pose, order++});
+      log.scans.push_back(std::move(s));
+    } else if (kind == "ROBOTLASER1") {
+      const int n = t.Count(8, "the number of readings");
+      const int m = t.Count(9 + n, "the number of remissions");
+      if (t.size() != static_cast<size_t>(n + m) + 24)
+        t.Fail("expected " + std::to_string(n + m + 24) + " fields for " + std::to_string(n) + " readings and " +
+               std::to_string(m) + " remissions, found " + std::to_string(t.size()));
+      Scan s;
+      s.ts = t.Timestamp();
+      s.line = line_number;
+      s.angle_min_rad = t.Number(2, "start_angle");
+      s.angle_increment_rad = t.Number(4, "the angular resolution");
+      s.range_max_m = t.Number(5, "max_range");
+      for (int i = 0; i < n; ++i) s.ranges_m.push_back(t.Number(9 + i, "a range reading"));
+      s.laser_pose = PoseAt(t, 10 + n + m, "the laser pose");
+      s.odometry_pose = PoseAt(t, 13 + n + m, "the robot pose");
+      log.odometry.push_back({s.ts, s.odometry_pose, order++});
+      log.scans.push_back(std::move(s));
+    } else if (kind == "PARAM" && t.size() >= 3) {
+      char* e = nullptr;
+      const double v = std::strtod(t.word(2).c_str(), &e);
+      if (e != t.word(2).c_str() && *e == '\0' && std::isfinite(v)) log.params[t.word(1)] = v;
+    }
+  }
+  return log;
+}
+
+}  // namespace
+
+Stream ParseCarmenLog(const std::string& text, const std::string& name, const CarmenImportOptions& o) {
+  if (!(o.dt_s > 0) || !(o.fov_deg > 0 && o.fov_deg <= 360) || o.range_max_m < 0 || !(o.range_min_m >= 0))
+    throw InputError(name, 0, "invalid import options (dt_s > 0, 0 < fov_deg <= 360, range_max_m >= 0)",
+                     "check the --fov-deg / --range-max-m values");
+  ParsedLog log = ParseLines(text, name, o);
+  if (log.scans.empty())
+    throw InputError(name, 0, "no FLASER or ROBOTLASER1 message: nothing to convert",
+                     "give a CARMEN laser log (.clf / .log, optionally .gz or .bz2)");
+
+  double range_max = o.range_max_m;
+  if (range_max == 0 && log.params.count("robot_front_laser_max")) range_max = log.params["robot_front_laser_max"];
+  if (range_max == 0 && log.scans.front().range_max_m > 0) range_max = log.scans.front().range_max_m;
+  if (range_max == 0) range_max = kDefaultRangeMaxM;
+
+  // The laser is the stream's robot: T_odom_laser = T_odom_robot * T_robot_laser.
+  const SE2 offset = Between(log.scans.front().odometry_pose, log.scans.front().laser_pose);
+  const SE2 offset_inv = offset.inverse();
+  std::stable_sort(log.odometry.begin(), log.odometry.end(),
+                   [](const OdometryPose& a, const OdometryPose& b) { return a.ts < b.ts; });
+  std::stable_sort(log.scans.begin(), log.scans.end(), [](const Scan& a, const Scan& b) { return a.ts < b.ts; });
+  const double t0 = std::min(log.odometry.front().ts, log.scans.front().ts);
+  const auto step = [&](double ts) { return std::llround((ts - t0) / o.dt_s); };
+
+  Stream s;
+  s.header.scenario_name = std::filesystem::path(name).filename().string();
+  s.header.scenario_yaml = "# converted from the CARMEN log " + s.header.scenario_name + " (no ground truth)\n";
+  s.header.dt_s = o.dt_s;
+  s.header.start_pose = log.odometry.front().pose * offset;
+  // Merge by time: odometry before a scan at the same step (its pose is that scan's).
+  size_t k = 1, j = 0;
+  SE2 previous = log.odometry.front().pose;
+  while (k < log.odometry.size() || j < log.scans.size()) {
+    const bool odometry_next = k < log.odometry.size() && (j == log.scans.size() || step(log.odometry[k].ts) <= step(log.scans[j].ts));
+    if (odometry_next) {
+      const OdometryPose& p = log.odometry[k++];
+      const OdometryEvent e{static_cast<double>(step(p.ts)) * o.dt_s, offset_inv * Between(previous, p.pose) * offset};
+      previous = p.pose;
+      // Two odometry poses in one time step become one event (times must increase).
+      // At time 0 they move the start pose instead (modules record the start at t = 0).
+      auto* last = s.events.empty() ? nullptr : std::get_if<OdometryEvent>(&s.events.back());
+      if (e.t_s == 0.0 && s.events.empty()) s.header.start_pose = s.header.start_pose * e.delta;
+      else if (last && last->t_s == e.t_s) last->delta = last->delta * e.delta;
+      else s.events.push_back(e);
+      continue;
+    }
+    const Scan& in = log.scans[j++];
+    LaserScanEvent e;
+    e.t_s = static_cast<double>(step(in.ts)) * o.dt_s;
+    e.angle_min_rad = in.angle_min_rad;
+    e.angle_increment_rad = in.angle_increment_rad;
+    e.range_min_m = o.range_min_m;
+    e.range_max_m = range_max;
+    for (double r : in.ranges_m) {
+      const bool hit = r >= o.range_min_m && r < range_max;
+      e.ranges_m.push_back(hit ? r : range_max);
+      e.valid.push_back(hit ? 1 : 0);
+    }
+    s.events.push_back(std::move(e));
+  }
+  s.header.duration_s = EventTime(s.events.back());
+  const double duration = std::max(s.header.duration_s, o.dt_s);
+  OdometryConfig odometry;
+  const auto odometry_events = std::count_if(s.events.begin(), s.events.end(),
+                                             [](const SensorEvent& e) { return std::holds_alternative<OdometryEvent>(e); });
+  odometry.rate_hz = static_cast<double>(odometry_events) / duration;
+  odometry.alpha = o.odometry_alpha;
+  LidarConfig lidar;
+  const Scan& first = log.scans.front();
+  lidar.rate_hz = static_cast<double>(log.scans.size()) / duration;
+  lidar.beams = static_cast<int>(first.ranges_m.size());
+  lidar.fov_deg = std::abs(first.angle_increment_rad) * (lidar.beams - (lidar.beams % 2 == 1 ? 1 : 0)) * 180.0 / M_PI;
+  lidar.range_min_m = o.range_min_m;
+  lidar.range_max_m = range_max;
+  lidar.sigma_range_m = o.sigma_range_m;
+  s.header.sensors.odometry = odometry;
+  s.header.sensors.lidar = lidar;
+  return s;
+}
+
+Stream ReadCarmenLog(const std::string& path, const CarmenImportOptions& options) {
+  return ParseCarmenLog(ReadMaybeCompressedFile(path), path, options);
+}
+
+}  // namespace slambox

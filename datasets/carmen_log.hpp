@@ -1,0 +1,46 @@
+#pragma once
+// CARMEN laser logs (.clf / .log, optionally .gz / .bz2) -> Stream, so every module can
+// replay a real run. Read messages (one per line, the ipc timestamp third from the end):
+//   ODOM x y theta tv rv accel  ts host logger_ts
+//   FLASER n r_1..r_n  x y theta  odom_x odom_y odom_theta  ts host logger_ts
+//   ROBOTLASER1 type start_angle fov resolution max_range accuracy remission_mode
+//               n r_1..r_n  m rem_1..rem_m  laser_x laser_y laser_theta
+//               robot_x robot_y robot_theta  tv rv fwd_safety side_safety turn_axis  ts host logger_ts
+//   PARAM robot_front_laser_max V ... / PARAM robot_frontlaser_offset V ...
+// Other messages (RLASER, TRUEPOS, SYNC, NEFF, comments) are skipped.
+//
+// The stream's robot frame is the laser's frame, so scans need no mounting offset: the
+// laser pose in the odometry frame is the odometry pose times the fixed offset, taken
+// from the first scan's (laser pose, odometry pose) pair. Odometry events are the
+// increments between consecutive odometry poses (ODOM messages and the odometry pose of
+// every scan, in time order), so at each scan the integrated odometry equals that scan's
+// odometry pose. Times are seconds since the first message, rounded to `dt_s`. The log
+// has no ground truth: the stream's ground truth is empty and so are pose metrics.
+#include <array>
+#include <string>
+
+#include "core/stream.hpp"
+
+namespace slambox {
+
+struct CarmenImportOptions {
+  /// FLASER lines carry no beam geometry: the n beams span this field of view, centred
+  /// ahead; n odd: the ends are at +-fov/2 (SICK 181 / 361), n even: step fov/n from -fov/2.
+  double fov_deg = 180.0;
+  /// [m] returns at or beyond this are misses (CARMEN writes the maximum for "no return");
+  /// 0 = the log's PARAM robot_front_laser_max, else ROBOTLASER1's max_range, else 80 m.
+  double range_max_m = 0.0;
+  double range_min_m = 0.01;    ///< [m] shorter returns are invalid
+  double sigma_range_m = 0.01;  ///< [m] written into the header's lidar block (the log does not say)
+  /// Thrun's odometry noise (rot1, trans, rot2 model) for modules that propagate covariance;
+  /// the log does not say, so this is a prior the user may set.
+  std::array<double, 4> odometry_alpha = {0.05, 0.005, 0.05, 0.005};
+  double dt_s = 0.001;  ///< [s] time step: every event time is a multiple of it
+};
+
+/// Parses a whole log already in memory; `name` is the file name used in errors.
+Stream ParseCarmenLog(const std::string& text, const std::string& name, const CarmenImportOptions& options = {});
+/// Reads (and decompresses) the file, then parses it.
+Stream ReadCarmenLog(const std::string& path, const CarmenImportOptions& options = {});
+
+}  // namespace slambox

@@ -1,0 +1,78 @@
+#include "datasets/compressed_file.hpp"
+
+#include <bzlib.h>
+#include <zlib.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace slambox {
+
+namespace {
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string ReadGzip(const std::string& path) {
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (!f) throw InputError(path, 0, "cannot open the file", "check the path and its permissions");
+  std::string out;
+  char buffer[1 << 16];
+  int n = 0;
+  while ((n = gzread(f, buffer, sizeof buffer)) > 0) out.append(buffer, static_cast<size_t>(n));
+  int code = Z_OK;
+  const std::string message = n < 0 ? gzerror(f, &code) : "";
+  gzclose(f);
+  if (n < 0)
+    throw InputError(path, 0, "corrupt gzip data (" + message + ")", "download the log again or decompress it with gunzip to see the damage");
+  return out;
+}
+
+std::string ReadPlain(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open the file", "check the path and its permissions");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string ReadBzip2(const std::string& path) {
+  std::string packed = ReadPlain(path);
+  std::string out;
+  char buffer[1 << 16];
+  size_t consumed = 0;
+  // A .bz2 may hold several concatenated streams (pbzip2): decode them one after another.
+  while (consumed < packed.size()) {
+    bz_stream z{};
+    if (BZ2_bzDecompressInit(&z, 0, 0) != BZ_OK) throw InputError(path, 0, "libbz2 could not start", "");
+    z.next_in = packed.data() + consumed;
+    z.avail_in = static_cast<unsigned>(packed.size() - consumed);
+    int code = BZ_OK;
+    while (code == BZ_OK) {
+      z.next_out = buffer;
+      z.avail_out = sizeof buffer;
+      code = BZ2_bzDecompress(&z);
+      out.append(buffer, sizeof buffer - z.avail_out);
+      if (code == BZ_OK && z.avail_in == 0 && z.avail_out > 0) break;  // input ended inside a stream
+    }
+    consumed = packed.size() - z.avail_in;
+    BZ2_bzDecompressEnd(&z);
+    if (code != BZ_STREAM_END)
+      throw InputError(path, 0, "corrupt or truncated bzip2 data", "download the log again or test it with `bzip2 -t`");
+  }
+  if (out.empty()) throw InputError(path, 0, "empty bzip2 file", "give a .bz2 file made by bzip2");
+  return out;
+}
+
+}  // namespace
+
+std::string ReadMaybeCompressedFile(const std::string& path) {
+  if (EndsWith(path, ".gz")) return ReadGzip(path);
+  if (EndsWith(path, ".bz2")) return ReadBzip2(path);
+  return ReadPlain(path);
+}
+
+}  // namespace slambox
