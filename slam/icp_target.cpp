@@ -3,6 +3,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <nanoflann.hpp>
 
 namespace slambox {
@@ -24,6 +25,15 @@ struct KdTree2d {
       : data{std::move(points)}, tree(2, data, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
   PointsAdaptor data;  // owned copy: the tree refers to it, so it must not move
   NanoflannTree tree;
+};
+
+struct LazyKdTree {
+  std::once_flag once;
+  std::unique_ptr<const KdTree2d> tree;
+  const KdTree2d& Get(const std::vector<Eigen::Vector2d>& points) {
+    std::call_once(once, [&] { tree = std::make_unique<const KdTree2d>(points); });
+    return *tree;
+  }
 };
 
 Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count) {
@@ -83,14 +93,22 @@ IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, c
     if (wrapped >= 0 && wrapped < beams)
       t.beam_lookup[static_cast<size_t>(b + IcpTarget::kBeamPad)] = t.point_of_beam[static_cast<size_t>(wrapped)];
   }
-  if (config.build_kd_tree) t.kd_tree = std::make_shared<const KdTree2d>(t.points);
+  t.beam_points.resize(t.beam_lookup.size());
+  for (size_t b = 0; b < t.beam_lookup.size(); ++b) {
+    const int j = t.beam_lookup[b];
+    t.beam_points[b] = j >= 0 ? t.points[static_cast<size_t>(j)]
+                              : Eigen::Vector2d(IcpTarget::kNoPoint, IcpTarget::kNoPoint);
+  }
+  t.kd_tree = std::make_shared<LazyKdTree>();
+  if (config.build_kd_tree) t.kd_tree->Get(t.points);
   return t;
 }
 
 IcpTarget MakeCloudTarget(std::vector<Eigen::Vector2d> points, const IcpTargetConfig& config) {
   IcpTarget t;
   t.points = std::move(points);
-  t.kd_tree = std::make_shared<const KdTree2d>(t.points);
+  t.kd_tree = std::make_shared<LazyKdTree>();
+  const KdTree2d& tree = t.kd_tree->Get(t.points);
   const size_t k = static_cast<size_t>(2 * config.normal_half_window + 1);
   const double max2 = config.normal_max_neighbor_m * config.normal_max_neighbor_m;
   std::vector<std::uint32_t> idx(k);
@@ -98,7 +116,7 @@ IcpTarget MakeCloudTarget(std::vector<Eigen::Vector2d> points, const IcpTargetCo
   std::vector<Eigen::Vector2d> nb;
   t.normals.assign(t.points.size(), Eigen::Vector2d::Zero());
   for (size_t i = 0; i < t.points.size(); ++i) {
-    const size_t found = t.kd_tree->tree.knnSearch(t.points[i].data(), k, idx.data(), d2.data());
+    const size_t found = tree.tree.knnSearch(t.points[i].data(), k, idx.data(), d2.data());
     nb.clear();
     for (size_t m = 0; m < found; ++m)
       if (d2[m] <= max2) nb.push_back(t.points[idx[m]]);
@@ -112,7 +130,7 @@ bool NearestByKdTree(const IcpTarget& target, const Eigen::Vector2d& q, int* ind
   if (target.points.empty()) return false;
   std::uint32_t i = 0;
   double d2 = 0;
-  if (target.kd_tree->tree.knnSearch(q.data(), 1, &i, &d2) == 0) return false;
+  if (target.kd_tree->Get(target.points).tree.knnSearch(q.data(), 1, &i, &d2) == 0) return false;
   *index = static_cast<int>(i);
   *dist2_m2 = d2;
   return true;
