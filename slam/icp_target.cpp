@@ -36,7 +36,11 @@ struct LazyKdTree {
   }
 };
 
-Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count) {
+namespace {
+
+// FitNormal's body, inlined into MakeScanTarget's per-point loop so that consecutive fits
+// overlap; no data-dependent branch after the degenerate-input checks.
+[[gnu::always_inline]] inline Eigen::Vector2d FitNormalInline(const Eigen::Vector2d* points, int count) {
   if (count < 2) return Eigen::Vector2d::Zero();
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (int i = 0; i < count; ++i) mean += points[i];
@@ -54,10 +58,15 @@ Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count) {
   const double half_diff = 0.5 * (cxx - cyy);
   const double l = 0.5 * (cxx + cyy) - std::sqrt(half_diff * half_diff + cxy * cxy);
   const Eigen::Vector2d v1(cxy, l - cxx), v2(l - cyy, cxy);
-  const Eigen::Vector2d v = v1.squaredNorm() > v2.squaredNorm() ? v1 : v2;
-  const double norm = v.norm();
-  return norm > 0 ? Eigen::Vector2d(v / norm) : Eigen::Vector2d::Zero();
+  const bool first = v1.squaredNorm() > v2.squaredNorm();
+  const double vx = first ? v1.x() : v2.x(), vy = first ? v1.y() : v2.y();
+  const double norm = std::sqrt(vx * vx + vy * vy);
+  return norm > 0 ? Eigen::Vector2d(vx / norm, vy / norm) : Eigen::Vector2d::Zero();
 }
+
+}  // namespace
+
+Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count) { return FitNormalInline(points, count); }
 
 IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, const IcpTargetConfig& config) {
   IcpTarget t;
@@ -70,34 +79,39 @@ IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, c
   const int beams = static_cast<int>(t.point_of_beam.size());
   const double max2 = config.normal_max_neighbor_m * config.normal_max_neighbor_m;
   const bool full_circle = std::abs(beams * geometry.angle_increment_rad - 2 * M_PI) < 1e-6;
+  t.full_circle = full_circle;
+  t.inverse_increment = 1.0 / geometry.angle_increment_rad;
+  // Beam index padded by kBeamPad each side: wrapped for a full circle, -1 outside otherwise.
+  constexpr int kPad = IcpTarget::kBeamPad;
+  t.beam_lookup.assign(static_cast<size_t>(beams + 2 * kPad), -1);
+  t.beam_points.resize(t.beam_lookup.size());
+  for (int b = -kPad; b < beams + kPad; ++b) {
+    int wrapped = b;
+    while (full_circle && wrapped < 0) wrapped += beams;
+    while (full_circle && wrapped >= beams) wrapped -= beams;
+    const int j = wrapped >= 0 && wrapped < beams ? t.point_of_beam[static_cast<size_t>(wrapped)] : -1;
+    t.beam_lookup[static_cast<size_t>(b + kPad)] = j;
+    t.beam_points[static_cast<size_t>(b + kPad)] =
+        j >= 0 ? t.points[static_cast<size_t>(j)] : Eigen::Vector2d(IcpTarget::kNoPoint, IcpTarget::kNoPoint);
+  }
+  // The point on beam b (b within kPad of the scan from the padded index, else wrapped), -1 if none.
+  auto point_on_beam = [&](int b) {
+    if (b >= -kPad && b < beams + kPad) return t.beam_lookup[static_cast<size_t>(b + kPad)];
+    if (full_circle) b = ((b % beams) + beams) % beams;
+    return b >= 0 && b < beams ? t.point_of_beam[static_cast<size_t>(b)] : -1;
+  };
   t.normals.assign(static_cast<size_t>(n), Eigen::Vector2d::Zero());
   std::vector<Eigen::Vector2d> nb(static_cast<size_t>(2 * config.normal_half_window + 1));
   for (int k = 0; k < n; ++k) {
     int count = 0;
     const int b0 = sp.beam[static_cast<size_t>(k)];
+    const Eigen::Vector2d& p = t.points[static_cast<size_t>(k)];
     for (int db = -config.normal_half_window; db <= config.normal_half_window; ++db) {
-      int b = b0 + db;
-      if (full_circle) b = (b + beams) % beams;
-      if (b < 0 || b >= beams) continue;
-      const int j = t.point_of_beam[static_cast<size_t>(b)];
-      if (j >= 0 && (t.points[static_cast<size_t>(j)] - t.points[static_cast<size_t>(k)]).squaredNorm() <= max2)
+      const int j = point_on_beam(b0 + db);
+      if (j >= 0 && (t.points[static_cast<size_t>(j)] - p).squaredNorm() <= max2)
         nb[static_cast<size_t>(count++)] = t.points[static_cast<size_t>(j)];
     }
-    if (count >= 3) t.normals[static_cast<size_t>(k)] = FitNormal(nb.data(), count);
-  }
-  t.full_circle = full_circle;
-  t.inverse_increment = 1.0 / geometry.angle_increment_rad;
-  t.beam_lookup.assign(static_cast<size_t>(beams + 2 * IcpTarget::kBeamPad), -1);
-  for (int b = -IcpTarget::kBeamPad; b < beams + IcpTarget::kBeamPad; ++b) {
-    const int wrapped = full_circle ? ((b % beams) + beams) % beams : b;
-    if (wrapped >= 0 && wrapped < beams)
-      t.beam_lookup[static_cast<size_t>(b + IcpTarget::kBeamPad)] = t.point_of_beam[static_cast<size_t>(wrapped)];
-  }
-  t.beam_points.resize(t.beam_lookup.size());
-  for (size_t b = 0; b < t.beam_lookup.size(); ++b) {
-    const int j = t.beam_lookup[b];
-    t.beam_points[b] = j >= 0 ? t.points[static_cast<size_t>(j)]
-                              : Eigen::Vector2d(IcpTarget::kNoPoint, IcpTarget::kNoPoint);
+    if (count >= 3) t.normals[static_cast<size_t>(k)] = FitNormalInline(nb.data(), count);
   }
   t.kd_tree = std::make_shared<LazyKdTree>();
   if (config.build_kd_tree) t.kd_tree->Get(t.points);
