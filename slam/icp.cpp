@@ -3,7 +3,6 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <span>
 
 #include "core/error.hpp"
@@ -63,35 +62,6 @@ struct Pairs {
   std::span<const double> Weight() const { return {weight.data(), count}; }
 };
 
-// NearestOnBeams for every point with the window a compile-time constant, so that the
-// search unrolls; same result (first strict minimum in beam order, kNoPoint beams lose).
-// A window reaching past the padded index takes NearestOnBeams' clamped path.
-template <int kWindow>
-void NearestOnBeamsAll(const IcpTarget& target, const Eigen::Vector2d* q, const double* bearing, size_t n,
-                       int* nearest, double* dist2) {
-  constexpr int kPad = IcpTarget::kBeamPad;
-  const int beams = static_cast<int>(target.point_of_beam.size());
-  const Eigen::Vector2d* beam_points = target.beam_points.data() + kPad;
-  const int* lookup = target.beam_lookup.data() + kPad;
-  for (size_t i = 0; i < n; ++i) {
-    const int center = CenterBeam(target, bearing[i]);
-    if (center - kWindow < -kPad || center + kWindow >= beams + kPad) {
-      if (!NearestOnBeams(target, q[i], bearing[i], kWindow, &nearest[i], &dist2[i])) nearest[i] = -1;
-      continue;
-    }
-    double best = std::numeric_limits<double>::infinity();
-    int best_b = center - kWindow;
-    for (int b = center - kWindow; b <= center + kWindow; ++b) {
-      const double d2 = (beam_points[b] - q[i]).squaredNorm();
-      const bool closer = d2 < best;
-      best = closer ? d2 : best;
-      best_b = closer ? b : best_b;
-    }
-    nearest[i] = lookup[best_b];
-    dist2[i] = best;
-  }
-}
-
 void FindPairs(const std::vector<Eigen::Vector2d>& source, const IcpTarget& target, const SE2& T,
                const IcpConfig& config, Pairs& pairs) {
   const Eigen::Matrix2d R = T.rotation();
@@ -111,17 +81,11 @@ void FindPairs(const std::vector<Eigen::Vector2d>& source, const IcpTarget& targ
   // first has no data-dependent branch and consecutive searches overlap.
   int* nearest = pairs.nearest.data();
   double* dist2 = pairs.dist2.data();
-  const double* bearing = pairs.bearing.data();
-  const int window = config.projection_window_beams;
-  if (projection && window == 0) NearestOnBeamsAll<0>(target, q_all, bearing, n, nearest, dist2);
-  else if (projection && window == 1) NearestOnBeamsAll<1>(target, q_all, bearing, n, nearest, dist2);
-  else if (projection && window == 2) NearestOnBeamsAll<2>(target, q_all, bearing, n, nearest, dist2);
-  else {
-    for (size_t i = 0; i < n; ++i) {
-      const bool found = projection ? NearestOnBeams(target, q_all[i], bearing[i], window, &nearest[i], &dist2[i])
-                                    : NearestByKdTree(target, q_all[i], &nearest[i], &dist2[i]);
-      if (!found) nearest[i] = -1;
-    }
+  if (projection) {
+    NearestOnBeamsBatch(target, q_all, pairs.bearing.data(), n, config.projection_window_beams, nearest, dist2);
+  } else {
+    for (size_t i = 0; i < n; ++i)
+      if (!NearestByKdTree(target, q_all[i], &nearest[i], &dist2[i])) nearest[i] = -1;
   }
   size_t k = 0;
   for (size_t i = 0; i < n; ++i) {

@@ -139,6 +139,50 @@ IcpTarget MakeCloudTarget(std::vector<Eigen::Vector2d> points, const IcpTargetCo
   return t;
 }
 
+namespace {
+// NearestOnBeamsBatch with the window a compile-time constant, so that the search unrolls;
+// same result (first strict minimum in beam order, kNoPoint beams lose). A window
+// reaching past the padded index takes NearestOnBeams' clamped path.
+template <int kWindow>
+void NearestOnBeamsAll(const IcpTarget& target, const Eigen::Vector2d* q, const double* bearing, size_t n,
+                       int* nearest, double* dist2) {
+  constexpr int kPad = IcpTarget::kBeamPad;
+  const int beams = static_cast<int>(target.point_of_beam.size());
+  const Eigen::Vector2d* beam_points = target.beam_points.data() + kPad;
+  const int* lookup = target.beam_lookup.data() + kPad;
+  for (size_t i = 0; i < n; ++i) {
+    const int center = CenterBeam(target, bearing[i]);
+    if (center - kWindow < -kPad || center + kWindow >= beams + kPad) {
+      if (!NearestOnBeams(target, q[i], bearing[i], kWindow, &nearest[i], &dist2[i])) nearest[i] = -1;
+      continue;
+    }
+    double best = std::numeric_limits<double>::infinity();
+    int best_b = center - kWindow;
+    for (int b = center - kWindow; b <= center + kWindow; ++b) {
+      const double d2 = (beam_points[b] - q[i]).squaredNorm();
+      const bool closer = d2 < best;
+      best = closer ? d2 : best;
+      best_b = closer ? b : best_b;
+    }
+    nearest[i] = lookup[best_b];
+    dist2[i] = best;
+  }
+}
+
+}  // namespace
+
+void NearestOnBeamsBatch(const IcpTarget& target, const Eigen::Vector2d* q, const double* bearing_rad, size_t n,
+                         int window_beams, int* nearest, double* dist2_m2) {
+  switch (window_beams) {
+    case 0: return NearestOnBeamsAll<0>(target, q, bearing_rad, n, nearest, dist2_m2);
+    case 1: return NearestOnBeamsAll<1>(target, q, bearing_rad, n, nearest, dist2_m2);
+    case 2: return NearestOnBeamsAll<2>(target, q, bearing_rad, n, nearest, dist2_m2);
+    default:
+      for (size_t i = 0; i < n; ++i)
+        if (!NearestOnBeams(target, q[i], bearing_rad[i], window_beams, &nearest[i], &dist2_m2[i])) nearest[i] = -1;
+  }
+}
+
 bool NearestByKdTree(const IcpTarget& target, const Eigen::Vector2d& q, int* index, double* dist2_m2) {
   assert(target.kd_tree && "IcpTarget built without a kd-tree");
   if (target.points.empty()) return false;

@@ -116,6 +116,11 @@ inline bool NearestOnBeams(const IcpTarget& target, const Eigen::Vector2d& q, do
   return true;
 }
 
+/// NearestOnBeams for n points at once: nearest[i] = -1 where none. Windows 0-2 run an
+/// unrolled search with the same results (ICP's inner loop).
+void NearestOnBeamsBatch(const IcpTarget& target, const Eigen::Vector2d* q, const double* bearing_rad, size_t n,
+                         int window_beams, int* nearest, double* dist2_m2);
+
 /// NearestOnBeams at q's own bearing.
 inline bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& q, int window_beams, int* index,
                                 double* dist2_m2) {
