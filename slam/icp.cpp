@@ -48,7 +48,8 @@ namespace {
 // nothing. Pairs live in the first `count` entries.
 struct Pairs {
   explicit Pairs(size_t n)
-      : transformed(n), bearing(n), dist2(n), nearest(n), source(n), target(n), normal(n), residual(n), weight(n), magnitude(n) {}
+      : transformed(n), bearing(n), dist2(n), nearest(n), source(n), target(n), normal(n), residual(n),
+        weight(n), magnitude(n) {}
   std::vector<Eigen::Vector2d> transformed;  // every source point in the target frame
   std::vector<double> bearing;               // its bearing [rad] (projection)
   std::vector<double> dist2;                 // [m^2] to its nearest target point
