@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "core/error.hpp"
 #include "slam/icp_closed_form.hpp"
@@ -43,64 +44,79 @@ double RobustWeight(IcpRobustKernel kernel, double e, double scale) {
 
 namespace {
 
+// Scratch reused by every iteration: sized once per registration, so the loop allocates
+// nothing. Pairs live in the first `count` entries.
 struct Pairs {
-  std::vector<Eigen::Vector2d> transformed;  // scratch: every source point in the target frame
-  std::vector<double> beam;                  // scratch: its bearing [rad]
+  explicit Pairs(size_t n)
+      : transformed(n), bearing(n), dist2(n), nearest(n), source(n), target(n), normal(n), residual(n),
+        weight(n), magnitude(n) {}
+  std::vector<Eigen::Vector2d> transformed;  // every source point in the target frame
+  std::vector<double> bearing;               // its bearing [rad] (projection)
+  std::vector<double> dist2;                 // [m^2] to its nearest target point
+  std::vector<int> nearest;                  // that point's index, -1 without one
   std::vector<Eigen::Vector2d> source, target, normal;
-  std::vector<double> residual, weight;
-  void clear() {
-    source.clear(), target.clear(), normal.clear(), residual.clear(), weight.clear();
-  }
+  std::vector<double> residual, weight, magnitude;
+  size_t count = 0;
+  std::span<const Eigen::Vector2d> Source() const { return {source.data(), count}; }
+  std::span<const Eigen::Vector2d> Target() const { return {target.data(), count}; }
+  std::span<const Eigen::Vector2d> Normal() const { return {normal.data(), count}; }
+  std::span<const double> Weight() const { return {weight.data(), count}; }
 };
 
 void FindPairs(const std::vector<Eigen::Vector2d>& source, const IcpTarget& target, const SE2& T,
                const IcpConfig& config, Pairs& pairs) {
-  pairs.clear();
   const Eigen::Matrix2d R = T.rotation();
   const Eigen::Vector2d t = T.translation();
   const double gate2 = config.max_correspondence_m * config.max_correspondence_m;
   const bool p2l = config.metric == IcpMetric::kPointToLine;
   const bool projection = config.correspondence == IcpCorrespondence::kProjection;
-  // Projection: transform and find every bearing first, in loops the compiler vectorizes.
-  std::vector<Eigen::Vector2d>& q_all = pairs.transformed;
-  std::vector<double>& beam_all = pairs.beam;
-  q_all.resize(source.size());
-  for (size_t i = 0; i < source.size(); ++i) q_all[i] = R * source[i] + t;
+  const size_t n = source.size();
+  // Transform and find every bearing first, in loops the compiler vectorizes.
+  Eigen::Vector2d* q_all = pairs.transformed.data();
+  for (size_t i = 0; i < n; ++i) q_all[i] = R * source[i] + t;
   if (projection) {
-    beam_all.resize(source.size());
-    for (size_t i = 0; i < source.size(); ++i) beam_all[i] = FastAtan2(q_all[i].y(), q_all[i].x());
+    double* bearing = pairs.bearing.data();
+    for (size_t i = 0; i < n; ++i) bearing[i] = FastAtan2(q_all[i].y(), q_all[i].x());
   }
-  for (size_t i = 0; i < source.size(); ++i) {
-    const Eigen::Vector2d& p = source[i];
-    const Eigen::Vector2d& q = q_all[i];
-    int j = -1;
-    double d2 = 0;
-    const bool found = projection ? NearestOnBeams(target, q, beam_all[i], config.projection_window_beams, &j, &d2)
-                                  : NearestByKdTree(target, q, &j, &d2);
-    if (!found || d2 > gate2) continue;
-    const Eigen::Vector2d& n = target.normals[static_cast<size_t>(j)];
-    if (p2l && n.squaredNorm() == 0.0) continue;
-    pairs.source.push_back(p);
-    pairs.target.push_back(target.points[static_cast<size_t>(j)]);
-    pairs.normal.push_back(n);
-    pairs.residual.push_back(p2l ? n.dot(q - pairs.target.back()) : std::sqrt(d2));
+  // Nearest target point of every source point, then the pairs: two loops, so that the
+  // first has no data-dependent branch and consecutive searches overlap.
+  int* nearest = pairs.nearest.data();
+  double* dist2 = pairs.dist2.data();
+  if (projection) {
+    NearestOnBeamsBatch(target, q_all, pairs.bearing.data(), n, config.projection_window_beams, nearest, dist2);
+  } else {
+    for (size_t i = 0; i < n; ++i)
+      if (!NearestByKdTree(target, q_all[i], &nearest[i], &dist2[i])) nearest[i] = -1;
   }
-  if (config.trim_fraction > 0 && pairs.residual.size() > 3) {  // keep the best (1 - trim) fraction
-    std::vector<double> mags(pairs.residual.size());
-    for (size_t i = 0; i < mags.size(); ++i) mags[i] = std::abs(pairs.residual[i]);
-    const size_t keep = std::max<size_t>(3, static_cast<size_t>((1.0 - config.trim_fraction) * mags.size()));
-    std::nth_element(mags.begin(), mags.begin() + static_cast<long>(keep - 1), mags.end());
+  size_t k = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const int j = nearest[i];
+    if (j < 0 || dist2[i] > gate2) continue;
+    const Eigen::Vector2d& nrm = target.normals[static_cast<size_t>(j)];
+    if (p2l && nrm.squaredNorm() == 0.0) continue;
+    const Eigen::Vector2d& tp = target.points[static_cast<size_t>(j)];
+    pairs.source[k] = source[i];
+    pairs.target[k] = tp;
+    pairs.normal[k] = nrm;
+    pairs.residual[k] = p2l ? nrm.dot(q_all[i] - tp) : std::sqrt(dist2[i]);
+    ++k;
+  }
+  pairs.count = k;
+  if (config.trim_fraction > 0 && k > 3) {  // keep the best (1 - trim) fraction
+    double* mags = pairs.magnitude.data();
+    for (size_t i = 0; i < k; ++i) mags[i] = std::abs(pairs.residual[i]);
+    const size_t keep = std::max<size_t>(3, static_cast<size_t>((1.0 - config.trim_fraction) * k));
+    std::nth_element(mags, mags + static_cast<long>(keep - 1), mags + k);
     const double cut = mags[keep - 1];
     size_t w = 0;
-    for (size_t i = 0; i < pairs.residual.size() && w < keep; ++i) {
+    for (size_t i = 0; i < k && w < keep; ++i) {
       if (std::abs(pairs.residual[i]) > cut) continue;
       pairs.source[w] = pairs.source[i], pairs.target[w] = pairs.target[i], pairs.normal[w] = pairs.normal[i];
       pairs.residual[w++] = pairs.residual[i];
     }
-    pairs.source.resize(w), pairs.target.resize(w), pairs.normal.resize(w), pairs.residual.resize(w);
+    pairs.count = w;
   }
-  pairs.weight.resize(pairs.residual.size());
-  for (size_t i = 0; i < pairs.residual.size(); ++i)
+  for (size_t i = 0; i < pairs.count; ++i)
     pairs.weight[i] = RobustWeight(config.robust_kernel, pairs.residual[i], config.robust_scale_m);
 }
 
@@ -111,21 +127,19 @@ IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarge
   IcpResult result;
   result.T_target_source = guess;
   result.num_source = static_cast<int>(source.size());
-  Pairs pairs;
-  const size_t cap = source.size();
-  pairs.source.reserve(cap), pairs.target.reserve(cap), pairs.normal.reserve(cap), pairs.residual.reserve(cap);
+  Pairs pairs(source.size());
   SE2 T = guess;
   Eigen::Matrix3d degenerate_mask = Eigen::Matrix3d::Zero();  // V_d V_d^T of the last iteration
   for (int it = 0; it < config.max_iterations; ++it) {
     FindPairs(source, target, T, config, pairs);
     result.iterations = it + 1;
-    result.num_inliers = static_cast<int>(pairs.source.size());
+    result.num_inliers = static_cast<int>(pairs.count);
     if (result.num_inliers < std::max(config.min_inliers, 3)) {
       result.converged = false;
       return result;
     }
     // Zero normals (point-to-point pairs off a surface) add nothing to these sums.
-    const PointToLineSums sums = AccumulatePointToLine(pairs.source, pairs.target, pairs.normal, pairs.weight);
+    const PointToLineSums sums = AccumulatePointToLine(pairs.Source(), pairs.Target(), pairs.Normal(), pairs.Weight());
     result.hessian = PointToLineHessian(sums, T.theta);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     eig.computeDirect(result.hessian);
@@ -140,11 +154,11 @@ IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarge
       }
     }
     double sum_e2 = 0;
-    for (double e : pairs.residual) sum_e2 += e * e;
+    for (size_t i = 0; i < pairs.count; ++i) sum_e2 += pairs.residual[i] * pairs.residual[i];
     result.rms_residual_m = std::sqrt(sum_e2 / result.num_inliers);
 
     const SE2 T_new = config.metric == IcpMetric::kPointToPoint
-                          ? AlignPointToPoint(pairs.source, pairs.target, pairs.weight)
+                          ? AlignPointToPoint(pairs.Source(), pairs.Target(), pairs.Weight())
                           : SolvePointToLine(sums, T);
     Eigen::Vector3d step(T_new.x - T.x, T_new.y - T.y, NormalizeAngle(T_new.theta - T.theta));
     if (config.remap_degenerate) step -= degenerate_mask * step;  // Zhang 2016: no motion along weak directions

@@ -5,8 +5,8 @@
 
 namespace slambox {
 
-SE2 AlignPointToPoint(const std::vector<Eigen::Vector2d>& source, const std::vector<Eigen::Vector2d>& target,
-                      const std::vector<double>& weights) {
+SE2 AlignPointToPoint(std::span<const Eigen::Vector2d> source, std::span<const Eigen::Vector2d> target,
+                      std::span<const double> weights) {
   double w_sum = 0;
   Eigen::Vector2d mu_s = Eigen::Vector2d::Zero(), mu_t = Eigen::Vector2d::Zero();
   for (size_t i = 0; i < source.size(); ++i) {
@@ -27,9 +27,8 @@ SE2 AlignPointToPoint(const std::vector<Eigen::Vector2d>& source, const std::vec
   return {t.x(), t.y(), std::atan2(R(1, 0), R(0, 0))};
 }
 
-PointToLineSums AccumulatePointToLine(const std::vector<Eigen::Vector2d>& source,
-                                      const std::vector<Eigen::Vector2d>& target,
-                                      const std::vector<Eigen::Vector2d>& normals, const std::vector<double>& weights) {
+PointToLineSums AccumulatePointToLine(std::span<const Eigen::Vector2d> source, std::span<const Eigen::Vector2d> target,
+                                      std::span<const Eigen::Vector2d> normals, std::span<const double> weights) {
   // Residual e_i = a_i^T t + b_i^T r - d_i with a = n, b = A(s)^T n, A(s) r = R s, d = n^T q.
   double aa00 = 0, aa01 = 0, aa11 = 0, ab00 = 0, ab01 = 0, ab10 = 0, ab11 = 0, bb00 = 0, bb01 = 0, bb11 = 0;
   double ga0 = 0, ga1 = 0, gb0 = 0, gb1 = 0;
@@ -62,8 +61,8 @@ Eigen::Matrix3d PointToLineHessian(const PointToLineSums& s, double theta_rad) {
   return H;
 }
 
-SE2 AlignPointToLine(const std::vector<Eigen::Vector2d>& source, const std::vector<Eigen::Vector2d>& target,
-                     const std::vector<Eigen::Vector2d>& normals, const std::vector<double>& weights,
+SE2 AlignPointToLine(std::span<const Eigen::Vector2d> source, std::span<const Eigen::Vector2d> target,
+                     std::span<const Eigen::Vector2d> normals, std::span<const double> weights,
                      const SE2& T_current) {
   return SolvePointToLine(AccumulatePointToLine(source, target, normals, weights), T_current);
 }

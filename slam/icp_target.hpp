@@ -15,12 +15,14 @@
 
 namespace slambox {
 
-struct KdTree2d;  // nanoflann index over a private copy of the points (icp_target.cpp)
+struct LazyKdTree;  // nanoflann index over a private copy of the points, built once (icp_target.cpp)
 
 struct IcpTarget {
   std::vector<Eigen::Vector2d> points;   ///< [m] target frame
   std::vector<Eigen::Vector2d> normals;  ///< unit normals; (0, 0) where too few neighbours
-  std::shared_ptr<const KdTree2d> kd_tree;  ///< null unless built
+  /// kd-tree over `points`: built by Make*Target when asked, else by the first
+  /// NearestByKdTree (thread-safe). Copies share it, so points must not change afterwards.
+  std::shared_ptr<LazyKdTree> kd_tree;
   // Projection model: beam b of the reference scan looks along angle_min + b * increment.
   double angle_min_rad = 0.0;
   double angle_increment_rad = 0.0;
@@ -29,6 +31,10 @@ struct IcpTarget {
   /// otherwise), so a window search needs no modulo.
   static constexpr int kBeamPad = 16;
   std::vector<int> beam_lookup;
+  /// The point of each beam_lookup entry, or kNoPoint where it is -1, so that a window
+  /// search reads consecutive memory and has no branch.
+  std::vector<Eigen::Vector2d> beam_points;
+  static constexpr double kNoPoint = 1e150;  ///< [m] both coordinates: squared distance ~1e300, finite
   double inverse_increment = 0.0;  ///< [1/rad]
   bool full_circle = false;
 };
@@ -36,11 +42,12 @@ struct IcpTarget {
 struct IcpTargetConfig {
   int normal_half_window = 2;          ///< neighbours on each side (beams or kNN/2) in the normal fit
   double normal_max_neighbor_m = 0.3;  ///< [m] neighbours farther from the point are not on its surface
-  bool build_kd_tree = true;           ///< false saves time when only projection is used
+  /// true: build the kd-tree now; false: on the first kd-tree query (projection never needs it)
+  bool build_kd_tree = false;
 };
 
 /// A single scan in its robot frame: normals by PCA over neighbouring beams, beam index,
-/// and a kd-tree when asked.
+/// and a kd-tree (now when asked, else on first use).
 IcpTarget MakeScanTarget(const ScanPoints& scan_points, const LaserScanEvent& geometry,
                          const IcpTargetConfig& config = {});
 /// Any cloud (e.g. a local map): kd-tree always, normals by PCA over the k nearest.
@@ -64,6 +71,21 @@ inline double FastAtan2(double y, double x) {
   return y < 0 ? -r : r;
 }
 
+/// The beam whose bearing is nearest to bearing_rad: floor((bearing - angle_min) /
+/// increment + 1/2), wrapped into [0, beams) for a full circle; may lie outside the scan.
+inline int CenterBeam(const IcpTarget& target, double bearing_rad) {
+  const int beams = static_cast<int>(target.point_of_beam.size());
+  double f = (bearing_rad - target.angle_min_rad) * target.inverse_increment;
+  if (target.full_circle) {
+    f += f < -0.5 ? beams : 0.0;
+    f -= f >= beams - 0.5 ? beams : 0.0;
+  }
+  // floor without a library call or a branch; the clamp keeps the int conversion defined.
+  const double g = std::clamp(f + 0.5, -1e9, 1e9);
+  const int c = static_cast<int>(g);  // truncation: one too high for negative non-integers
+  return c - (g < c ? 1 : 0);
+}
+
 /// The nearest among the target points on beams within +-window_beams (<= kBeamPad) of
 /// bearing_rad, q's bearing in the target frame. False when none of those beams has a
 /// point. Inline: ICP's inner loop.
@@ -72,28 +94,32 @@ inline bool NearestOnBeams(const IcpTarget& target, const Eigen::Vector2d& q, do
   const int beams = static_cast<int>(target.point_of_beam.size());
   assert(beams > 0 && "IcpTarget has no beam index (not built from a scan)");
   assert(window_beams <= IcpTarget::kBeamPad);
-  double f = (bearing_rad - target.angle_min_rad) * target.inverse_increment;
-  if (target.full_circle) {
-    if (f < -0.5) f += beams;
-    else if (f >= beams - 0.5) f -= beams;
-  }
-  const int center = static_cast<int>(std::floor(f + 0.5));
+  const int center = CenterBeam(target, bearing_rad);
   const int lo = std::max(center - window_beams, -IcpTarget::kBeamPad);
   const int hi = std::min(center + window_beams, beams + IcpTarget::kBeamPad - 1);
-  const int* lookup = target.beam_lookup.data() + IcpTarget::kBeamPad;
+  if (lo > hi) return false;
+  const Eigen::Vector2d* beam_points = target.beam_points.data() + IcpTarget::kBeamPad;
+  // First strict minimum in beam order; beams without a point are kNoPoint away, so they
+  // lose to any real point and need no branch.
   double best = std::numeric_limits<double>::infinity();
-  int best_i = -1;
+  int best_b = lo;
   for (int b = lo; b <= hi; ++b) {
-    const int j = lookup[b];
-    if (j < 0) continue;
-    const double d2 = (target.points[static_cast<size_t>(j)] - q).squaredNorm();
-    if (d2 < best) best = d2, best_i = j;
+    const double d2 = (beam_points[b] - q).squaredNorm();
+    const bool closer = d2 < best;
+    best = closer ? d2 : best;
+    best_b = closer ? b : best_b;
   }
-  if (best_i < 0) return false;
-  *index = best_i;
+  const int j = target.beam_lookup[static_cast<size_t>(best_b + IcpTarget::kBeamPad)];
+  if (j < 0) return false;
+  *index = j;
   *dist2_m2 = best;
   return true;
 }
+
+/// NearestOnBeams for n points at once: nearest[i] = -1 where none. Windows 0-2 run an
+/// unrolled search with the same results (ICP's inner loop).
+void NearestOnBeamsBatch(const IcpTarget& target, const Eigen::Vector2d* q, const double* bearing_rad, size_t n,
+                         int window_beams, int* nearest, double* dist2_m2);
 
 /// NearestOnBeams at q's own bearing.
 inline bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& q, int window_beams, int* index,

@@ -2,20 +2,49 @@
 
 #include <cmath>
 #include <unordered_set>
+#include <vector>
 
 namespace slambox {
+namespace {
+
+// cos / sin of every beam angle, angle_min + i * increment, for the last scan geometry
+// seen on this thread (a LIDAR's geometry never changes, so this is computed once). Same
+// expressions as a direct evaluation, so the points are bit-identical.
+struct BeamDirections {
+  double angle_min_rad = 0.0, angle_increment_rad = 0.0;
+  std::vector<double> cos, sin;
+};
+
+const BeamDirections& DirectionsFor(const LaserScanEvent& scan) {
+  thread_local BeamDirections d;
+  if (d.cos.size() != scan.ranges_m.size() || d.angle_min_rad != scan.angle_min_rad ||
+      d.angle_increment_rad != scan.angle_increment_rad) {
+    d.angle_min_rad = scan.angle_min_rad;
+    d.angle_increment_rad = scan.angle_increment_rad;
+    d.cos.resize(scan.ranges_m.size());
+    d.sin.resize(scan.ranges_m.size());
+    for (size_t i = 0; i < scan.ranges_m.size(); ++i) {
+      const double a = scan.angle_min_rad + static_cast<double>(i) * scan.angle_increment_rad;
+      d.cos[i] = std::cos(a);
+      d.sin[i] = std::sin(a);
+    }
+  }
+  return d;
+}
+
+}  // namespace
 
 ScanPoints ScanToPoints(const LaserScanEvent& scan, const ScanPointsConfig& config) {
   const double r_min = config.range_min_m > 0 ? config.range_min_m : scan.range_min_m;
   const double r_max = config.range_max_m > 0 ? config.range_max_m : scan.range_max_m;
+  const BeamDirections& dir = DirectionsFor(scan);
   ScanPoints out;
   out.points.reserve(scan.ranges_m.size());
   out.beam.reserve(scan.ranges_m.size());
   for (size_t i = 0; i < scan.ranges_m.size(); ++i) {
     const double r = scan.ranges_m[i];
     if (!scan.valid[i] || !std::isfinite(r) || r < r_min || r > r_max) continue;
-    const double a = scan.angle_min_rad + static_cast<double>(i) * scan.angle_increment_rad;
-    out.points.emplace_back(r * std::cos(a), r * std::sin(a));
+    out.points.emplace_back(r * dir.cos[i], r * dir.sin[i]);
     out.beam.push_back(static_cast<int>(i));
   }
   if (config.voxel_size_m > 0) {
