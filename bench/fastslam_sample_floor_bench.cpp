@@ -114,7 +114,8 @@ Estimate RunFastSlam(int algo, int particles, const Stream& s) {
   return Replay(m, s);
 }
 
-// Args: seeds_from, algo (0 ekf-slam with its sample floor, 1 fastslam1, 2 fastslam2), M.
+// Args: seeds_from, algo (0 ekf-slam with its sample floor, 1 fastslam1, 2 fastslam2), M,
+// K runs per seed.
 void BM_SampleFloor(benchmark::State& state) {
   const int from = static_cast<int>(state.range(0)), algo = static_cast<int>(state.range(1));
   const int particles = static_cast<int>(state.range(2)), replicates = static_cast<int>(state.range(3));
