@@ -24,6 +24,7 @@ std::string Needs(const SensorNeeds& needs) {
   add(needs.odometry, "odometry");
   add(needs.lidar, "lidar");
   add(needs.landmarks, "landmarks");
+  add(needs.map, "map");
   return "[" + (out.empty() ? std::string("-") : out) + "]";
 }
 

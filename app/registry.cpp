@@ -5,6 +5,7 @@
 #include "slam/ekf_slam.hpp"
 #include "slam/fastslam.hpp"
 #include "slam/graphslam.hpp"
+#include "slam/icp_localization.hpp"
 #include "slam/icp_odometry.hpp"
 #include "slam/icp_poseslam.hpp"
 #include "slam/mrpt/mrpt_ekf_slam.hpp"
@@ -22,6 +23,7 @@ const std::vector<ModuleInfo>& AllModules() {
       FastSlam2Module(),
       IcpOdometryModule(),
       IcpPoseSlamModule(),
+      IcpLocalizationModule(),
       MrptIcpSlamModule(),
       MrptEkfSlamModule(),
       MrptRbpfSlamModule(),
@@ -37,9 +39,9 @@ const ModuleInfo& FindModule(const std::string& name) {
   throw InputError("--algo", 0, "unknown algorithm '" + name + "'", "use one of: " + names + ", or all");
 }
 
-bool SensorsAllow(const ModuleInfo& module, const SensorSuite& sensors) {
+bool SensorsAllow(const ModuleInfo& module, const SensorSuite& sensors, bool has_map) {
   return (!module.needs.odometry || sensors.odometry) && (!module.needs.lidar || sensors.lidar) &&
-         (!module.needs.landmarks || sensors.landmarks);
+         (!module.needs.landmarks || sensors.landmarks) && (!module.needs.map || has_map);
 }
 
 }  // namespace slambox

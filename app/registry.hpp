@@ -11,6 +11,7 @@ const std::vector<ModuleInfo>& AllModules();
 /// Throws InputError listing the known names when `name` is unknown.
 const ModuleInfo& FindModule(const std::string& name);
 /// True when the stream carries every sensor the module needs.
-bool SensorsAllow(const ModuleInfo& module, const SensorSuite& sensors);
+/// True when the sensors (and, for localization, a known map) are there for the module.
+bool SensorsAllow(const ModuleInfo& module, const SensorSuite& sensors, bool has_map = true);
 
 }  // namespace slambox

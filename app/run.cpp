@@ -59,19 +59,22 @@ Stream LoadOrSimulate(const std::string& input, std::uint64_t seed, bool seed_gi
 }
 
 std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors,
-                                           bool skip_unavailable) {
+                                           bool skip_unavailable, bool has_map) {
   std::vector<std::string> names;
   for (const auto& r : requested) {
     if (r == "all") {
       for (const auto& m : AllModules())
-        if (SensorsAllow(m, sensors)) names.push_back(m.name);
+        if (SensorsAllow(m, sensors, has_map)) names.push_back(m.name);
       continue;
     }
     const ModuleInfo& m = FindModule(r);
-    if (!SensorsAllow(m, sensors) && skip_unavailable) continue;
+    if (!SensorsAllow(m, sensors, has_map) && skip_unavailable) continue;
     if (!SensorsAllow(m, sensors))
       throw InputError("--algo " + r, 0, "the stream lacks a sensor '" + r + "' needs",
                        "add the sensor to the scenario or pick another algorithm (see `slambox algorithms`)");
+    if (!SensorsAllow(m, sensors, has_map))
+      throw InputError("--algo " + r, 0, "'" + r + "' localizes in a known map and the stream's world has no walls",
+                       "run it on a scenario (a converted real log carries no map)");
     names.push_back(r);
   }
   if (names.empty()) throw InputError("--algo", 0, "no algorithm to run", "give --algo NAME[,NAME...] or all");
@@ -100,7 +103,10 @@ void WriteJson(const fs::path& path, const json& j) { WriteFileAtomic(path.strin
 json RunAndWrite(const RunRequest& request) {
   const Overrides overrides = SplitOverrides(request.sets);
   const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
-  const std::vector<std::string> names = ResolveAlgorithms(request.algorithms, stream.header.sensors, request.skip_unavailable);
+  const World& world = stream.header.world;
+  const bool has_map = !world.wall_segments.empty() || !world.wall_circles.empty();
+  const std::vector<std::string> names =
+      ResolveAlgorithms(request.algorithms, stream.header.sensors, request.skip_unavailable, has_map);
   for (const auto& [name, fields] : overrides.algo) {
     FindModule(name);  // unknown module in --set is an error even when not run
     if (std::find(names.begin(), names.end(), name) == names.end())

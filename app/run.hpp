@@ -47,6 +47,6 @@ nlohmann::json RunAndWrite(const RunRequest& request);
 /// module the sensors do not allow is an error, or skipped with `skip_unavailable` (sweeps
 /// list modules once for scenarios with different sensors).
 std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors,
-                                           bool skip_unavailable = false);
+                                           bool skip_unavailable = false, bool has_map = true);
 
 }  // namespace slambox

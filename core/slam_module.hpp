@@ -30,6 +30,7 @@ struct SensorNeeds {
   bool odometry = true;
   bool lidar = false;
   bool landmarks = false;
+  bool map = false;  ///< a known map: the stream's world has walls (localization; real logs have none)
 };
 
 struct ModuleInfo {

@@ -1,0 +1,88 @@
+#include "slam/icp_localization.hpp"
+
+#include <Eigen/LU>
+
+#include "core/error.hpp"
+#include "core/odometry_model.hpp"
+#include "slam/map_points.hpp"
+#include "slam/scan_points.hpp"
+
+namespace slambox {
+
+void BindParams(IcpLocalizationConfig& c, ParamBinder& b) {
+  BindIcpParams(c.icp, c.icp_choices, b);
+  b.Bind("map_spacing_m", c.map_spacing_m, "m", "spacing of the map points sampled along the walls");
+  b.Bind("max_correction_m", c.max_correction_m, "m", "reject an ICP result farther than this from the prediction");
+  b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "covariance: no scan more certain than this (translation)");
+  b.Bind("info_cap_sigma_theta_deg", c.info_cap_sigma_theta_deg, "deg", "covariance: ... (heading)");
+}
+
+IcpLocalization::IcpLocalization(const IcpLocalizationConfig& config)
+    : config_(config), icp_(ResolveIcpConfig(config.icp, config.icp_choices, "icp-localization")) {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0))
+      throw InputError(std::string("--set algo.icp-localization.") + name, 0, "must be > 0", "give a positive value");
+  };
+  positive(config_.map_spacing_m, "map_spacing_m");
+  positive(config_.max_correction_m, "max_correction_m");
+  positive(config_.info_cap_sigma_xy_m, "info_cap_sigma_xy_m");
+  positive(config_.info_cap_sigma_theta_deg, "info_cap_sigma_theta_deg");
+}
+
+void IcpLocalization::Start(const StreamHeader& header) {
+  std::vector<Eigen::Vector2d> points = SampleWorldOutlines(header.world, config_.map_spacing_m);
+  if (points.size() < 10)
+    throw InputError(header.scenario_name, 0, "icp-localization needs a known map, and this stream's world has no walls",
+                     "run it on a simulated scenario (a converted real log carries no map)");
+  map_ = MakeCloudTarget(std::move(points), {.build_kd_tree = true});
+  alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
+  pose_ = header.start_pose;
+  covariance_.setZero();
+  estimate_ = Estimate{};
+  Record(0.0);
+}
+
+void IcpLocalization::Record(double t_s) {
+  if (!estimate_.trajectory.empty() && estimate_.trajectory.back().t_s == t_s) estimate_.trajectory.pop_back();
+  estimate_.trajectory.push_back(PoseEstimate{t_s, pose_, covariance_, true});
+}
+
+void IcpLocalization::OnOdometry(const OdometryEvent& odometry) {
+  const OdometryIncrement u = Decompose(odometry.delta);
+  const MotionPrediction p = PredictMotion(pose_, u);
+  covariance_ = p.J_pose_pose * covariance_ * p.J_pose_pose.transpose() +
+                p.J_pose_increment * IncrementCovariance(u, alpha_) * p.J_pose_increment.transpose();
+  pose_ = pose_ * odometry.delta;
+  Record(odometry.t_s);
+}
+
+void IcpLocalization::OnLaserScan(const LaserScanEvent& scan) {
+  const ScanPoints points = ScanToPoints(scan, {});
+  const IcpResult r = RegisterIcp(points.points, map_, pose_, icp_);
+  const double correction_m = (r.T_target_source.translation() - pose_.translation()).norm();
+  const bool ok = r.num_inliers >= icp_.min_inliers && correction_m <= config_.max_correction_m;
+  if (ok) {
+    // The scan measures the absolute pose; where ICP is degenerate the prediction's
+    // information is kept (IcpEdgeInformation projects it onto those directions).
+    const InformationCaps caps{config_.info_cap_sigma_xy_m, config_.info_cap_sigma_theta_deg * M_PI / 180.0};
+    pose_ = r.T_target_source;
+    covariance_ = IcpEdgeInformation(r, covariance_, caps).inverse();
+  }
+  auto& d = estimate_.diagnostics;
+  d["icp_iterations"].emplace_back(scan.t_s, r.iterations);
+  d["icp_inliers"].emplace_back(scan.t_s, r.num_inliers);
+  d["hessian_min_eigenvalue"].emplace_back(scan.t_s, r.eigenvalues(0));
+  d["degenerate"].emplace_back(scan.t_s, r.degenerate ? 1.0 : 0.0);
+  d["scan_accepted"].emplace_back(scan.t_s, ok ? 1.0 : 0.0);
+  Record(scan.t_s);
+}
+
+Estimate IcpLocalization::Finish() { return std::move(estimate_); }
+
+ModuleInfo IcpLocalizationModule() {
+  return MakeModuleInfo<IcpLocalization, IcpLocalizationConfig>(
+      "icp-localization", "pose tracking in the known map (the world's walls) by scan-to-map ICP from odometry",
+      {.odometry = true, .lidar = true, .map = true}, &BindParams);
+}
+
+}  // namespace slambox

@@ -1,0 +1,47 @@
+#pragma once
+// `icp-localization`: pose tracking in a known map. The map is the stream's world (walls
+// and posts, sampled into points with normals and a kd-tree); each scan is registered to
+// it by ICP from the odometry-predicted pose; between scans the pose follows odometry.
+// Covariance: the capped ICP covariance at scans (along directions ICP cannot see, e.g.
+// a corridor's axis, the predicted covariance stays), Thrun's odometry model between them.
+// A scan ICP rejects (too few pairs, or a correction beyond max_correction_m) leaves the
+// prediction, so a mover or a dropout does not teleport the robot.
+#include "core/slam_module.hpp"
+#include "slam/edge_information.hpp"
+#include "slam/icp_params.hpp"
+
+namespace slambox {
+
+struct IcpLocalizationConfig {
+  IcpConfig icp{.correspondence = IcpCorrespondence::kKdTree, .max_correspondence_m = 0.3};
+  IcpChoices icp_choices{.correspondence = "kdtree", .robust_kernel = "geman-mcclure"};  ///< movers are not in the map
+  double map_spacing_m = 0.05;           ///< [m] spacing of the map points along walls
+  double max_correction_m = 0.5;         ///< [m] a larger ICP correction of the prediction is rejected
+  double info_cap_sigma_xy_m = 0.005;    ///< [m] no scan more certain than this, translation
+  double info_cap_sigma_theta_deg = 0.1; ///< [deg] ... heading
+};
+void BindParams(IcpLocalizationConfig& c, ParamBinder& b);
+
+class IcpLocalization : public SlamModule {
+ public:
+  explicit IcpLocalization(const IcpLocalizationConfig& config);
+  void Start(const StreamHeader& header) override;
+  void OnOdometry(const OdometryEvent& odometry) override;
+  void OnLaserScan(const LaserScanEvent& scan) override;
+  Estimate Finish() override;
+
+ private:
+  void Record(double t_s);
+
+  IcpLocalizationConfig config_;
+  IcpConfig icp_;
+  IcpTarget map_;
+  std::array<double, 4> alpha_{};
+  SE2 pose_;
+  Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();
+  Estimate estimate_;
+};
+
+ModuleInfo IcpLocalizationModule();
+
+}  // namespace slambox

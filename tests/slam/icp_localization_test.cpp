@@ -1,0 +1,86 @@
+// icp-localization: the map sampler's closed forms, accuracy and consistency on the ring
+// corridor (fixed seeds), the degenerate corridor (the axis stays with odometry), a world
+// without walls is an input error, determinism.
+#include "slam/icp_localization.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "core/error.hpp"
+#include "slam/dead_reckoning.hpp"
+#include "slam/map_points.hpp"
+#include "tests/slam/icp_module_support.hpp"
+
+namespace slambox {
+namespace {
+
+TEST(MapPoints, SamplesSegmentsAndCirclesEvenly) {
+  World w;
+  w.wall_segments.push_back({Eigen::Vector2d(1, 1), Eigen::Vector2d(2, 1)});
+  w.wall_circles.push_back({Eigen::Vector2d(5, 5), 0.5});
+  const std::vector<Eigen::Vector2d> p = SampleWorldOutlines(w, 0.25);
+  const int circle = static_cast<int>(std::ceil(2 * M_PI * 0.5 / 0.25));  // 13
+  ASSERT_EQ(p.size(), 5u + circle);
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR((p[i] - Eigen::Vector2d(1 + 0.25 * i, 1)).norm(), 0, 1e-15);
+  for (size_t i = 5; i < p.size(); ++i) EXPECT_NEAR((p[i] - Eigen::Vector2d(5, 5)).norm(), 0.5, 1e-12);
+  EXPECT_TRUE(SampleWorldOutlines(World{}, 0.1).empty());
+}
+
+TEST(IcpLocalization, TracksTheRingFarBetterThanOdometryAndIsConsistent) {
+  double anees = 0;
+  for (std::uint64_t seed : {31, 32}) {
+    const Stream s = testing::RingStream(seed, 1);
+    const Estimate e = testing::RunModule(IcpLocalizationModule(), s);
+    const double loc = testing::PositionRmse(e, s);
+    const double odo = testing::PositionRmse(testing::RunModule(DeadReckoningModule(), s), s);
+    const double a = testing::PoseAnees(e, s);
+    std::printf("ring seed %d: odometry %.3f m, icp-localization %.4f m, ANEES %.2f\n", static_cast<int>(seed), odo, loc, a);
+    EXPECT_LT(loc, 0.02);
+    EXPECT_LT(loc, odo / 20);
+    anees += a / 2;
+  }
+  EXPECT_GT(anees, 0.3);
+  EXPECT_LT(anees, 8.0);
+}
+
+TEST(IcpLocalization, CorridorAxisStaysWithOdometry) {
+  // Two parallel walls: ICP fixes the lateral position and heading, never the axis.
+  World corridor;
+  corridor.wall_segments = {{Eigen::Vector2d(-5, -1.5), Eigen::Vector2d(40, -1.5)},
+                            {Eigen::Vector2d(-5, 1.5), Eigen::Vector2d(40, 1.5)}};
+  testing::SyntheticOptions o;
+  o.path = {{0, 0}, {30, 0}};
+  o.seed = 5;
+  o.sensors.odometry = OdometryConfig{};
+  LidarConfig lidar;
+  lidar.beams = 360;
+  lidar.range_max_m = 10;  // the corridor's ends stay out of range
+  o.sensors.lidar = lidar;
+  const Stream s = testing::MakeSyntheticStream(o, corridor);
+  const Estimate e = testing::RunModule(IcpLocalizationModule(), s);
+  size_t far = 0;  // the pose at the far end of the corridor
+  for (size_t i = 0; i < e.trajectory.size(); ++i)
+    if (e.trajectory[i].pose.x > e.trajectory[far].pose.x) far = i;
+  const Eigen::Matrix3d& P = e.trajectory[far].covariance;
+  std::printf("far end: sigma_x %.3f m, sigma_y %.4f m\n", std::sqrt(P(0, 0)), std::sqrt(P(1, 1)));
+  EXPECT_GT(P(0, 0), 25 * P(1, 1));  // along the axis: odometry's growing uncertainty
+  double degenerate = 0;
+  for (const auto& [t, v] : e.diagnostics.at("degenerate")) degenerate += v;
+  EXPECT_GT(degenerate, 0.8 * e.diagnostics.at("degenerate").size());
+  EXPECT_LT(testing::PositionRmse(e, s), 1.0);
+}
+
+TEST(IcpLocalization, NeedsAMapAndIsDeterministic) {
+  Stream s = testing::RingStream(33, 1);
+  const Estimate a = testing::RunModule(IcpLocalizationModule(), s);
+  const Estimate b = testing::RunModule(IcpLocalizationModule(), s);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (size_t i = 0; i < a.trajectory.size(); ++i) EXPECT_EQ(a.trajectory[i].pose.vector(), b.trajectory[i].pose.vector());
+  s.header.world = World{};
+  EXPECT_THROW(testing::RunModule(IcpLocalizationModule(), s), InputError);
+  EXPECT_THROW(testing::RunModule(IcpLocalizationModule(), s, {{"map_spacing_m", "0"}}), InputError);
+}
+
+}  // namespace
+}  // namespace slambox
