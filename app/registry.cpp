@@ -8,6 +8,7 @@
 #include "slam/icp_localization.hpp"
 #include "slam/icp_odometry.hpp"
 #include "slam/icp_poseslam.hpp"
+#include "slam/mcl.hpp"
 #include "slam/mrpt/mrpt_ekf_slam.hpp"
 #include "slam/mrpt/mrpt_icp_slam.hpp"
 #include "slam/mrpt/mrpt_rbpf_slam.hpp"
@@ -24,6 +25,7 @@ const std::vector<ModuleInfo>& AllModules() {
       IcpOdometryModule(),
       IcpPoseSlamModule(),
       IcpLocalizationModule(),
+      MclModule(),
       MrptIcpSlamModule(),
       MrptEkfSlamModule(),
       MrptRbpfSlamModule(),
