@@ -1,5 +1,6 @@
 // `slambox convert carmen LOG -o STREAM`: a real log into a stream file, which `slambox
 // run` replays like a simulated one (without ground truth, so pose metrics are null).
+#include <array>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/stream_io.hpp"
 #include "datasets/carmen_log.hpp"
+#include "datasets/victoria_park.hpp"
 
 namespace slambox {
 
@@ -16,16 +18,40 @@ namespace {
 struct ConvertRequest {
   std::string input, output;
   CarmenImportOptions carmen;
+  VictoriaParkImportOptions victoria;
   std::vector<double> alpha;
 };
 
+std::array<double, 4> Alpha(const std::vector<double>& given, std::array<double, 4> fallback) {
+  if (given.empty()) return fallback;
+  if (given.size() != 4)
+    throw InputError("--odometry-alpha", 0, "expected 4 values", "write e.g. --odometry-alpha 0.05,0.005,0.05,0.005");
+  return {given[0], given[1], given[2], given[3]};
+}
+
+void ConvertVictoriaPark(const ConvertRequest& r) {
+  VictoriaParkImportOptions o = r.victoria;
+  o.odometry_alpha = Alpha(r.alpha, o.odometry_alpha);
+  const Stream s = ReadVictoriaPark(r.input, o);
+  WriteStream(s, r.output);
+  long poses = 0, observations = 0;
+  for (const SensorEvent& e : s.events) {
+    poses += std::holds_alternative<OdometryEvent>(e);
+    if (const auto* l = std::get_if<LandmarkEvent>(&e)) observations += static_cast<long>(l->observations.size());
+  }
+  const LandmarkSensorConfig& lm = *s.header.sensors.landmarks;
+  std::ostringstream line;
+  line.setf(std::ios::fixed);
+  line.precision(3);
+  line << "converted " << r.input << ": " << poses << " odometry steps, " << observations
+       << " observations (known ids; median sigma_range " << lm.sigma_range_m << " m, sigma_bearing "
+       << lm.sigma_bearing_deg << " deg, range max " << lm.range_max_m << " m) -> " << r.output;
+  std::cerr << line.str() << "\n";
+}
+
 void ConvertCarmen(const ConvertRequest& r) {
   CarmenImportOptions o = r.carmen;
-  if (!r.alpha.empty()) {
-    if (r.alpha.size() != 4)
-      throw InputError("--odometry-alpha", 0, "expected 4 values", "write e.g. --odometry-alpha 0.05,0.005,0.05,0.005");
-    for (size_t i = 0; i < 4; ++i) o.odometry_alpha[i] = r.alpha[i];
-  }
+  o.odometry_alpha = Alpha(r.alpha, o.odometry_alpha);
   const Stream s = ReadCarmenLog(r.input, o);
   WriteStream(s, r.output);
   long odometry = 0, scans = 0;
@@ -60,6 +86,13 @@ void AddConvertCommand(CLI::App& app) {
   carmen->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (Thrun's model; default 0.05,0.005,0.05,0.005)")
       ->delimiter(',');
   carmen->callback([r] { ConvertCarmen(*r); });
+  CLI::App* vp = cmd->add_subcommand("victoria-park", "Victoria Park, preprocessed (VicPark_clean_data.txt): odometry + tree observations, known ids");
+  vp->add_option("data", r->input, "VicPark_clean_data.txt (optionally .gz/.bz2)")->required();
+  vp->add_option("-o,--output", r->output, "stream file to write")->required();
+  vp->add_option("--pose-period-s", r->victoria.pose_period_s, "time between poses; the file has none (default 0.2)");
+  vp->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (Thrun's model; default 0.05,0.005,0.05,0.005)")
+      ->delimiter(',');
+  vp->callback([r] { ConvertVictoriaPark(*r); });
 }
 
 }  // namespace slambox

@@ -111,3 +111,23 @@ TEST(Convert, IcpPoseSlamMapsTheIntelLogWhenPresent) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Convert, EkfSlamMapsVictoriaParkWhenPresent) {
+  const std::string vp =
+      slambox::testing::PublicDataFile(SLAMBOX_SOURCE_DIR, "landmark/victoria_park/islsjf/VicPark_clean_data.txt");
+  if (vp.empty()) GTEST_SKIP() << "public data absent (../shared/data or $SLAMBOX_DATA)";
+  const fs::path dir = TempDir("vp");
+  ASSERT_EQ(Slambox("convert victoria-park " + vp + " -o " + (dir / "vp.stream").string()).code, 0);
+  const Result r = Slambox("run " + (dir / "vp.stream").string() + " --algo ekf-slam --no-figures -q -o " + (dir / "run").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir / "run" / "metrics.json");
+  EXPECT_EQ(json::parse(in).at("algorithms").at("ekf-slam").at("status"), "ok");
+  std::ifstream est(dir / "run" / "estimates" / "ekf-slam.json");
+  const json e = json::parse(est);
+  EXPECT_GT(e.at("landmarks").size(), 100u);  // trees mapped with known ids
+  fs::remove_all(dir);
+}
+
+}  // namespace
