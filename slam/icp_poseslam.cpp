@@ -129,7 +129,10 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
   T_kf_last_scan_ = T_kf_robot_;
   const bool far = T_kf_robot_.translation().norm() >= config_.keyframe_distance_m ||
                    std::abs(T_kf_robot_.theta) >= config_.keyframe_angle_deg * kDegToRad;
-  if (far && ok) AddKeyframe(scan, std::move(points), &r);
+  // A keyframe ICP cannot reach any more (sparse or changed surroundings) is replaced all
+  // the same, joined by an odometry edge: otherwise every later scan would be registered to
+  // an ever more distant keyframe and fail too.
+  if (far) AddKeyframe(scan, std::move(points), ok ? &r : nullptr);
   else RecordPose(scan.t_s);
 }
 
@@ -141,9 +144,14 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
     e.from = k - 1;
     e.to = k;
     e.T_from_to = T_kf_robot_;
-    e.information = config_.edge_information == "fixed"
-                        ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
-                        : IcpEdgeInformation(*edge_icp, odometry_cov_, Caps());
+    if (!edge_icp) {  // ICP failed: the wheel odometry since the keyframe, floored so it stays invertible
+      e.information = (odometry_cov_ + Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix()).inverse();
+      estimate_.diagnostics["odometry_edges"].emplace_back(scan.t_s, 1.0);
+    } else {
+      e.information = config_.edge_information == "fixed"
+                          ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
+                          : IcpEdgeInformation(*edge_icp, odometry_cov_, Caps());
+    }
     graph_.edges.push_back(e);
     loop_record_of_edge_.push_back(-1);
   }

@@ -72,6 +72,7 @@ class IcpPoseSlam : public SlamModule {
     Eigen::Matrix3d covariance;  ///< of T_kf_robot (absolute before the first keyframe)
   };
   void RecordPose(double t_s);
+  /// edge_icp: the ICP result joining it to the previous keyframe, or null (odometry edge).
   void AddKeyframe(const LaserScanEvent& scan, ScanPoints points, const IcpResult* edge_icp);
   void CloseLoops(double t_s);
   PoseGraphSolveResult Solve(bool marginals = false);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <variant>
 #include <cstdio>
 
 #include "core/error.hpp"
@@ -59,6 +61,22 @@ TEST(IcpPoseSlam, CovarianceFromGraphMarginalsShrinksWithLoopClosures) {
   const Estimate off = testing::RunModule(IcpPoseSlamModule(), s, {{"compute_covariance", "false"}});
   EXPECT_FALSE(off.trajectory.back().has_covariance);
   EXPECT_EQ(off.trajectory.back().pose.vector(), slam.trajectory.back().pose.vector());
+}
+
+// Scans that ICP cannot use (here: blanked for 5 s) must not strand the front end on an
+// old keyframe: keyframes go on with odometry edges and ICP locks on again afterwards.
+TEST(IcpPoseSlam, RecoversAfterAStretchOfUnusableScans) {
+  Stream s = testing::RingStream(13, 1);
+  for (SensorEvent& e : s.events)
+    if (auto* scan = std::get_if<LaserScanEvent>(&e); scan && scan->t_s > 10.0 && scan->t_s < 15.0)
+      std::fill(scan->valid.begin(), scan->valid.end(), 0);
+  const Estimate est = testing::RunModule(IcpPoseSlamModule(), s);
+  ASSERT_TRUE(est.diagnostics.count("odometry_edges"));
+  int after = 0, locked = 0;
+  for (const auto& [t, inliers] : est.diagnostics.at("icp_inliers"))
+    if (t > 16.0) ++after, locked += inliers >= 100 ? 1 : 0;
+  EXPECT_GT(locked, 0.95 * after) << locked << " of " << after;
+  EXPECT_LT(testing::PositionRmse(est, s), 0.1);
 }
 
 TEST(IcpPoseSlam, DeterministicAndEveryParameterSettable) {
