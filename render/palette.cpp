@@ -18,10 +18,13 @@ Rgba ModuleColor(const std::vector<std::string>& modules, size_t i) {
   int k = 0;
   for (size_t j = 0; j < i; ++j) k += modules[j] != "odometry";
   // Five Okabe-Ito hues (orange stays odometry's, black is ground truth), then the same
-  // hues darkened, so up to ten modules stay distinguishable.
+  // hues darkened, then lightened toward white: up to fifteen modules stay distinct.
   const Rgba base = SeriesColor(k % 5);
-  if ((k / 5) % 2 == 0) return base;
-  return {0.55 * base.r, 0.55 * base.g, 0.55 * base.b, base.a};
+  switch ((k / 5) % 3) {
+    case 0: return base;
+    case 1: return {0.55 * base.r, 0.55 * base.g, 0.55 * base.b, base.a};
+    default: return {0.45 + 0.55 * base.r, 0.45 + 0.55 * base.g, 0.45 + 0.55 * base.b, base.a};
+  }
 }
 
 Rgba Viridis(double u) {

@@ -34,7 +34,8 @@ inline constexpr Rgba kGroundTruth{0.0, 0.0, 0.0};
 /// ground truth and too light on white; orange last, as odometry's colour); cycles after 6.
 Rgba SeriesColor(int i);
 /// Colour of module i in a list of module names, the same in every figure: odometry
-/// (the baseline) is orange, the others take SeriesColor in order.
+/// (the baseline) is orange, the others take five SeriesColor hues in order, then the
+/// same darkened, then lightened (fifteen distinct colours before any repeats).
 Rgba ModuleColor(const std::vector<std::string>& modules, size_t i);
 /// Viridis colormap at u in [0, 1] (clamped), piecewise linear through 9 anchors.
 Rgba Viridis(double u);
