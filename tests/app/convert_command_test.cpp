@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "tests/support/public_data.hpp"
+#include "tests/support/slambox_cli.hpp"
 
 namespace {
 
@@ -20,19 +21,9 @@ using nlohmann::json;
 
 const std::string kBinary = SLAMBOX_BINARY;
 
-struct Result {
-  int code;
-  std::string output;
-};
+using Result = slambox::testing::CliResult;
 
-Result Slambox(const std::string& args) {
-  const std::string log = (fs::temp_directory_path() / ("slambox_convert_log_" + std::to_string(getpid()))).string();
-  const int status = std::system((kBinary + " " + args + " > " + log + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream s;
-  s << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
-}
+Result Slambox(const std::string& args) { return slambox::testing::RunSlambox(kBinary, args); }
 
 fs::path TempDir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("slambox_convert_" + name + "_" + std::to_string(getpid()));

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "tests/support/slambox_cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -16,19 +18,9 @@ using nlohmann::json;
 
 const std::string kBinary = SLAMBOX_BINARY;
 
-struct Result {
-  int code;
-  std::string output;  // stdout + stderr
-};
+using Result = slambox::testing::CliResult;
 
-Result Slambox(const std::string& args) {
-  const std::string log = (fs::temp_directory_path() / ("slambox_run_log_" + std::to_string(getpid()))).string();
-  const int status = std::system((kBinary + " " + args + " > " + log + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream s;
-  s << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
-}
+Result Slambox(const std::string& args) { return slambox::testing::RunSlambox(kBinary, args); }
 
 json ReadJson(const fs::path& p) {
   std::ifstream in(p);

@@ -44,37 +44,38 @@ inline Stream RingStream(std::uint64_t seed, int laps) {
 }
 
 /// RMSE of the estimated positions at the ground-truth times they share (no alignment).
-inline double PositionRmse(const Estimate& e, const Stream& s) {
+/// Calls f(estimate pose, true pose) for every estimated pose at a ground-truth time.
+template <class F>
+void ForEachMatchedPose(const Estimate& e, const Stream& s, F&& f) {
   std::map<double, SE2> gt;
   for (const auto& g : s.groundtruth) gt[g.t_s] = g.pose;
+  for (const auto& p : e.trajectory)
+    if (auto it = gt.find(p.t_s); it != gt.end()) f(p, it->second);
+}
+
+inline double PositionRmse(const Estimate& e, const Stream& s) {
   double sum = 0;
   int n = 0;
-  for (const auto& p : e.trajectory) {
-    auto it = gt.find(p.t_s);
-    if (it == gt.end()) continue;
-    sum += (p.pose.translation() - it->second.translation()).squaredNorm();
+  ForEachMatchedPose(e, s, [&](const PoseEstimate& p, const SE2& truth) {
+    sum += (p.pose.translation() - truth.translation()).squaredNorm();
     ++n;
-  }
+  });
   return n ? std::sqrt(sum / n) : INFINITY;
 }
 
 /// Mean NEES (3 dof) of the poses that carry a covariance, at the ground-truth times they
 /// share; poses with a singular covariance (the known start) are skipped. NaN if none.
 inline double PoseAnees(const Estimate& e, const Stream& s) {
-  std::map<double, SE2> gt;
-  for (const auto& g : s.groundtruth) gt[g.t_s] = g.pose;
   double sum = 0;
   int n = 0;
-  for (const auto& p : e.trajectory) {
-    auto it = gt.find(p.t_s);
-    if (it == gt.end() || !p.has_covariance) continue;
+  ForEachMatchedPose(e, s, [&](const PoseEstimate& p, const SE2& truth) {
+    if (!p.has_covariance) return;
     const Eigen::LDLT<Eigen::Matrix3d> ldlt(p.covariance);
-    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-14)) continue;
-    const Eigen::Vector3d d(p.pose.x - it->second.x, p.pose.y - it->second.y,
-                            NormalizeAngle(p.pose.theta - it->second.theta));
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-14)) return;
+    const Eigen::Vector3d d(p.pose.x - truth.x, p.pose.y - truth.y, NormalizeAngle(p.pose.theta - truth.theta));
     sum += d.dot(ldlt.solve(d));
     ++n;
-  }
+  });
   return n ? sum / n : NAN;
 }
 
