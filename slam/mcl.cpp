@@ -1,6 +1,8 @@
 #include "slam/mcl.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "core/error.hpp"
 #include "core/odometry_model.hpp"
@@ -20,6 +22,9 @@ void BindParams(MclConfig& c, ParamBinder& b) {
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
   b.Bind("init_sigma_xy_m", c.init_sigma_xy_m, "m", "initial particle spread around the start, position");
   b.Bind("init_sigma_theta_deg", c.init_sigma_theta_deg, "deg", "initial particle spread, heading");
+  b.Bind("recovery_alpha_slow", c.recovery_alpha_slow, "-", "augmented MCL: long-term likelihood average rate (0 = off)");
+  b.Bind("recovery_alpha_fast", c.recovery_alpha_fast, "-", "augmented MCL: short-term likelihood average rate (0 = off)");
+  b.Bind("free_clearance_m", c.free_clearance_m, "m", "random particles keep this distance from every wall");
 }
 
 Mcl::Mcl(const MclConfig& config) : config_(config) {
@@ -34,6 +39,11 @@ Mcl::Mcl(const MclConfig& config) : config_(config) {
   if (!(config_.neff_threshold >= 0 && config_.neff_threshold <= 1)) fail("neff_threshold", "lies in [0, 1]");
   if (config_.motion_noise_scale < 0 || config_.init_sigma_xy_m < 0 || config_.init_sigma_theta_deg < 0)
     fail("motion_noise_scale", "noise scales and spreads must not be negative");
+  if (config_.recovery_alpha_slow < 0 || config_.recovery_alpha_fast > 1 ||
+      (config_.recovery_alpha_fast > 0 && !(config_.recovery_alpha_slow > 0 && config_.recovery_alpha_slow < config_.recovery_alpha_fast)))
+    fail("recovery_alpha_slow", "use 0 < recovery_alpha_slow < recovery_alpha_fast <= 1 (e.g. 0.001 and 0.1), or both 0");
+  if (!(config_.free_clearance_m >= 0 && config_.free_clearance_m < config_.max_distance_m))
+    fail("free_clearance_m", "must lie in [0, max_distance_m)");
 }
 
 void Mcl::Start(const StreamHeader& header) {
@@ -43,6 +53,9 @@ void Mcl::Start(const StreamHeader& header) {
     throw InputError(header.scenario_name, 0, "mcl needs a known map, and this stream's world has no walls",
                      "run it on a simulated scenario (a converted real log carries no map)");
   field_ = MakeDistanceGrid(walls, config_.grid_resolution_m, config_.max_distance_m, config_.max_distance_m);
+  map_lo_ = map_hi_ = walls.front();
+  for (const auto& w : walls) map_lo_ = map_lo_.cwiseMin(w), map_hi_ = map_hi_.cwiseMax(w);
+  w_slow_ = w_fast_ = 0.0;
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
   range_max_m_ = header.sensors.lidar ? header.sensors.lidar->range_max_m : 30.0;
   // Own generator: the stream seed and this module's name.
@@ -58,18 +71,32 @@ void Mcl::Start(const StreamHeader& header) {
   Record(0.0);
 }
 
-// Weighted mean (circular heading) and covariance of the particles.
+// The estimate: weighted mean (circular heading) and covariance of the particles near the
+// heaviest 1 m cell (within 2 cells of it), so that a multi-modal cloud (random particles
+// of Augmented MCL, a lost filter) reports its main mode rather than a point between modes.
 void Mcl::Record(double t_s) {
   const std::vector<double> w = NormalizeLogWeights(log_weights_);
-  double x = 0, y = 0, s = 0, c = 0;
+  const auto cell = [](const SE2& p) {
+    return std::make_pair(static_cast<long>(std::floor(p.x)), static_cast<long>(std::floor(p.y)));
+  };
+  std::map<std::pair<long, long>, double> mass;
+  for (size_t i = 0; i < w.size(); ++i) mass[cell(poses_[i])] += w[i];
+  const auto best = std::max_element(mass.begin(), mass.end(), [](const auto& a, const auto& b) { return a.second < b.second; })->first;
+  std::vector<size_t> mode;
+  double total = 0.0;
   for (size_t i = 0; i < w.size(); ++i) {
-    x += w[i] * poses_[i].x, y += w[i] * poses_[i].y;
-    s += w[i] * std::sin(poses_[i].theta), c += w[i] * std::cos(poses_[i].theta);
+    const auto c = cell(poses_[i]);
+    if (std::abs(c.first - best.first) <= 2 && std::abs(c.second - best.second) <= 2) mode.push_back(i), total += w[i];
+  }
+  double x = 0, y = 0, s = 0, c = 0;
+  for (size_t i : mode) {
+    const double wi = w[i] / total;
+    x += wi * poses_[i].x, y += wi * poses_[i].y, s += wi * std::sin(poses_[i].theta), c += wi * std::cos(poses_[i].theta);
   }
   PoseEstimate e{t_s, SE2(x, y, std::atan2(s, c)), Eigen::Matrix3d::Zero(), true};
-  for (size_t i = 0; i < w.size(); ++i) {
+  for (size_t i : mode) {
     const Eigen::Vector3d d(poses_[i].x - x, poses_[i].y - y, NormalizeAngle(poses_[i].theta - e.pose.theta));
-    e.covariance += w[i] * d * d.transpose();
+    e.covariance += w[i] / total * d * d.transpose();
   }
   if (!estimate_.trajectory.empty() && estimate_.trajectory.back().t_s == t_s) estimate_.trajectory.back() = e;
   else estimate_.trajectory.push_back(e);
@@ -98,6 +125,7 @@ void Mcl::OnLaserScan(const LaserScanEvent& scan) {
     const double a = scan.angle_min_rad + static_cast<double>(b) * scan.angle_increment_rad;
     endpoints.emplace_back(scan.ranges_m[b] * std::cos(a), scan.ranges_m[b] * std::sin(a));
   }
+  double w_avg = 0.0;  // mean over particles of the per-beam geometric-mean likelihood
   for (size_t i = 0; i < poses_.size(); ++i) {
     double ll = 0.0;
     for (const Eigen::Vector2d& q : endpoints) {
@@ -105,22 +133,49 @@ void Mcl::OnLaserScan(const LaserScanEvent& scan) {
       ll += std::log(norm * std::exp(-0.5 * d * d * inv_var) + z_rand);
     }
     log_weights_[i] += ll;
+    if (!endpoints.empty()) w_avg += std::exp(ll / static_cast<double>(endpoints.size())) / static_cast<double>(poses_.size());
+  }
+  // Thrun Table 8.3: w_slow, w_fast follow w_avg; a sudden drop (w_fast << w_slow) means
+  // the particles are lost, and 1 - w_fast / w_slow of them are replaced at resampling.
+  double random_fraction = 0.0;
+  if (config_.recovery_alpha_fast > 0 && !endpoints.empty()) {
+    if (w_slow_ == 0.0) w_slow_ = w_fast_ = w_avg;
+    w_slow_ += config_.recovery_alpha_slow * (w_avg - w_slow_);
+    w_fast_ += config_.recovery_alpha_fast * (w_avg - w_fast_);
+    random_fraction = w_slow_ > 0 ? std::max(0.0, 1.0 - w_fast_ / w_slow_) : 0.0;
   }
   const std::vector<double> w = NormalizeLogWeights(log_weights_);
   const double neff = EffectiveSampleSize(w);
-  const bool resample = neff < config_.neff_threshold * static_cast<double>(poses_.size());
+  const bool resample = neff < config_.neff_threshold * static_cast<double>(poses_.size()) || random_fraction > 0.0;
   Record(scan.t_s);  // the weighted estimate before resampling (resampling adds noise only)
   if (resample) {
     std::vector<SE2> next;
     next.reserve(poses_.size());
     for (int k : LowVarianceResample(w, rng_)) next.push_back(poses_[static_cast<size_t>(k)]);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int injected = 0;
+    for (SE2& p : next)
+      if (u(rng_) < random_fraction) p = RandomFreePose(), ++injected;
     poses_ = std::move(next);
+    estimate_.diagnostics["random_particles"].emplace_back(scan.t_s, injected);
     log_weights_.assign(poses_.size(), 0.0);
   } else {
     for (size_t i = 0; i < w.size(); ++i) log_weights_[i] = std::log(std::max(w[i], 1e-300));
   }
   estimate_.diagnostics["neff"].emplace_back(scan.t_s, neff);
   estimate_.diagnostics["resampled"].emplace_back(scan.t_s, resample ? 1.0 : 0.0);
+}
+
+// Uniform over the walls' bounding box and heading, at least free_clearance_m from every
+// wall (rejection sampling; after 1000 tries the last draw is taken).
+SE2 Mcl::RandomFreePose() {
+  std::uniform_real_distribution<double> ux(map_lo_.x(), map_hi_.x()), uy(map_lo_.y(), map_hi_.y()), ut(-M_PI, M_PI);
+  Eigen::Vector2d p;
+  for (int tries = 0; tries < 1000; ++tries) {
+    p = Eigen::Vector2d(ux(rng_), uy(rng_));
+    if (field_.At(p) >= config_.free_clearance_m) break;
+  }
+  return SE2(p.x(), p.y(), ut(rng_));
 }
 
 Estimate Mcl::Finish() { return std::move(estimate_); }
