@@ -70,6 +70,17 @@ TEST(Convert, CarmenLogReplaysThroughRunWithoutGroundTruth) {
     EXPECT_GT(a.at("realtime_factor").get<double>(), 0.0);
   }
   EXPECT_TRUE(fs::exists(dir / "run" / "icp-odometry.tum"));
+  // A converted log has no map: `all` skips the localization modules, naming one fails clearly.
+  const Result all = Slambox("run " + (dir / "c.stream").string() + " --algo all --no-figures -q -o " + (dir / "all").string());
+  ASSERT_EQ(all.code, 0) << all.output;
+  std::ifstream all_in(dir / "all" / "metrics.json");
+  const json algorithms = json::parse(all_in).at("algorithms");
+  EXPECT_TRUE(algorithms.contains("icp-poseslam"));
+  EXPECT_FALSE(algorithms.contains("mcl"));
+  EXPECT_FALSE(algorithms.contains("icp-localization"));
+  const Result mcl = Slambox("run " + (dir / "c.stream").string() + " --algo mcl --no-figures -q -o " + (dir / "mcl").string());
+  EXPECT_NE(mcl.code, 0);
+  EXPECT_NE(mcl.output.find("known map"), std::string::npos) << mcl.output;
   fs::remove_all(dir);
 }
 
