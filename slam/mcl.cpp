@@ -57,7 +57,17 @@ void Mcl::Start(const StreamHeader& header) {
   for (const auto& w : walls) map_lo_ = map_lo_.cwiseMin(w), map_hi_ = map_hi_.cwiseMax(w);
   w_slow_ = w_fast_ = 0.0;
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
-  range_max_m_ = header.sensors.lidar ? header.sensors.lidar->range_max_m : 30.0;
+  // The beam's log-likelihood depends on its endpoint's wall distance d alone:
+  // log(z_hit N(d; 0, sigma_hit) + z_rand / z_max), tabulated once over [0, max_distance]
+  // (the field's clamp) and interpolated linearly, so the hot loop has no log or exp.
+  const double range_max_m = header.sensors.lidar ? header.sensors.lidar->range_max_m : 30.0;
+  const double z_rand = (1.0 - config_.z_hit) / range_max_m;
+  const double norm = config_.z_hit / (std::sqrt(2 * M_PI) * config_.sigma_hit_m);
+  beam_log_likelihood_.resize(kBeamTableSize + 1);
+  for (int k = 0; k <= kBeamTableSize; ++k) {
+    const double d = config_.max_distance_m * k / kBeamTableSize;
+    beam_log_likelihood_[k] = std::log(norm * std::exp(-0.5 * d * d / (config_.sigma_hit_m * config_.sigma_hit_m)) + z_rand);
+  }
   // Own generator: the stream seed and this module's name.
   std::seed_seq seq{static_cast<std::uint32_t>(header.seed), static_cast<std::uint32_t>(header.seed >> 32), 0x6d636cu};
   rng_.seed(seq);
@@ -114,11 +124,9 @@ void Mcl::OnOdometry(const OdometryEvent& odometry) {
 }
 
 void Mcl::OnLaserScan(const LaserScanEvent& scan) {
-  // Likelihood field: log prod_k (z_hit N(d_k; 0, sigma_hit) + z_rand / z_max) over the
-  // used beams' endpoints; misses carry no information here and are skipped.
-  const double z_rand = (1.0 - config_.z_hit) / range_max_m_;
-  const double norm = config_.z_hit / (std::sqrt(2 * M_PI) * config_.sigma_hit_m);
-  const double inv_var = 1.0 / (config_.sigma_hit_m * config_.sigma_hit_m);
+  // Likelihood field: the sum of the used beams' log-likelihoods (the table from Start);
+  // misses carry no information here and are skipped.
+  const double cells_per_m = kBeamTableSize / config_.max_distance_m;
   std::vector<Eigen::Vector2d> endpoints;  // in the robot frame
   for (size_t b = 0; b < scan.ranges_m.size(); b += static_cast<size_t>(config_.beam_step)) {
     if (!scan.valid[b]) continue;
@@ -129,8 +137,9 @@ void Mcl::OnLaserScan(const LaserScanEvent& scan) {
   for (size_t i = 0; i < poses_.size(); ++i) {
     double ll = 0.0;
     for (const Eigen::Vector2d& q : endpoints) {
-      const double d = field_.At(poses_[i] * q);
-      ll += std::log(norm * std::exp(-0.5 * d * d * inv_var) + z_rand);
+      const double f = std::min(field_.At(poses_[i] * q) * cells_per_m, static_cast<double>(kBeamTableSize));
+      const int k = std::min(static_cast<int>(f), kBeamTableSize - 1);
+      ll += beam_log_likelihood_[k] + (f - k) * (beam_log_likelihood_[k + 1] - beam_log_likelihood_[k]);
     }
     log_weights_[i] += ll;
     if (!endpoints.empty()) w_avg += std::exp(ll / static_cast<double>(endpoints.size())) / static_cast<double>(poses_.size());

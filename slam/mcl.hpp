@@ -52,7 +52,8 @@ class Mcl : public SlamModule {
   MclConfig config_;
   DistanceGrid field_;
   std::array<double, 4> alpha_{};
-  double range_max_m_ = 30.0;
+  static constexpr int kBeamTableSize = 1024;  ///< intervals of the beam log-likelihood table
+  std::vector<double> beam_log_likelihood_;    ///< at d = max_distance_m * k / kBeamTableSize
   std::mt19937_64 rng_;
   std::vector<SE2> poses_;
   std::vector<double> log_weights_;
