@@ -1,5 +1,8 @@
-// The kidnapped robot (DESIGN.md's robot.kidnap) on the simulated `loop`: plain MCL and
+// The kidnapped robot (DESIGN.md's robot.kidnap) on the simulated `maze`: plain MCL and
 // icp-localization stay lost, Augmented MCL (Thrun Table 8.3) finds the robot again.
+// Not on `loop`: its corridor ring is symmetric under a half turn, so a kidnapped robot
+// there may lock onto the mirror pose (measured: 3 of 8 seeds recover), which no
+// LIDAR-only filter can tell apart. On `maze` 8 of 8 seeds recover.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -22,9 +25,10 @@ double WorstError(const Estimate& e, const Stream& s, double from_s, double to_s
 }
 
 TEST(MclKidnap, AugmentedMclRecoversPlainMclDoesNot) {
-  // At 60 s the robot drives west along y = 22.5; it is put 14 m further along.
-  const Stream s = Simulate(LoadScenario("loop", {"robot.kidnap.at_s=60", "robot.kidnap.to.x=20",
-                                                   "robot.kidnap.to.y=22.5", "robot.kidnap.to.theta_deg=180"}),
+  // At 60 s the robot heads west at (19.7, 14.7) for waypoint (19.2, 14.6); it is put
+  // 4.7 m further west, facing east, and drives back to that waypoint.
+  const Stream s = Simulate(LoadScenario("maze", {"robot.kidnap.at_s=60", "robot.kidnap.to.x=15",
+                                                   "robot.kidnap.to.y=15", "robot.kidnap.to.theta_deg=0"}),
                             1);
   const auto run = [&](const std::string& name, const ParamOverrides& o) {
     auto module = FindModule(name).create(o);
