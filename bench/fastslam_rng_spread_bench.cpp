@@ -13,19 +13,11 @@
 
 #include "sim/simulate.hpp"
 #include "slam/ekf_slam.hpp"
+#include "bench/trajectory_error.hpp"
 #include "slam/fastslam.hpp"
 
 namespace slambox {
 namespace {
-
-double PositionRmse(const std::vector<PoseEstimate>& trajectory, const Stream& s) {
-  double sum = 0;
-  for (const PoseEstimate& p : trajectory) {
-    const SE2& gt = s.groundtruth.at(static_cast<size_t>(std::llround(p.t_s / s.header.dt_s))).pose;
-    sum += (p.pose.translation() - gt.translation()).squaredNorm();
-  }
-  return std::sqrt(sum / trajectory.size());
-}
 
 // Args: particles M, runs K.
 void BM_RngSpread(benchmark::State& state) {

@@ -25,6 +25,7 @@
 
 #include "sim/simulate.hpp"
 #include "slam/ekf_slam.hpp"
+#include "bench/trajectory_error.hpp"
 #include "slam/fastslam.hpp"
 
 namespace slambox {
@@ -38,15 +39,6 @@ const Stream& StreamFor(int seed) {
   auto it = cache.find(seed);
   if (it == cache.end()) it = cache.emplace(seed, Simulate(LoadScenario("landmarks", {}), seed)).first;
   return it->second;
-}
-
-double PositionRmse(const std::vector<PoseEstimate>& trajectory, const Stream& s) {
-  double sum = 0;
-  for (const PoseEstimate& p : trajectory) {
-    const SE2& gt = s.groundtruth.at(static_cast<size_t>(std::llround(p.t_s / s.header.dt_s))).pose;
-    sum += (p.pose.translation() - gt.translation()).squaredNorm();
-  }
-  return std::sqrt(sum / trajectory.size());
 }
 
 std::map<int, Eigen::Vector2d> TruthById(const Stream& s) {
