@@ -114,24 +114,27 @@ bool DrawNeesFigure(const RunFolder& run, const std::string& stem) {
   // Log axis from the decade below the smallest value to the decade above the largest.
   const double y0 = std::pow(10.0, std::floor(std::log10(lo))), y1 = std::pow(10.0, std::ceil(std::log10(hi * 1.0001)));
   const Eigen::Vector2d xr = RangeOf(lines, true);
-  Canvas c(kFigureWidthPx, 600, 3);
-  const Axes axes = MakeAxes({112.0, 62.0, kFigureWidthPx - 30.0, 600 - 88.0}, NiceRange(0.0, xr[1]), {y0, y1}, true);
   std::vector<LegendEntry> legend;
   const Rgba band_color = color::kSkyBlue.WithAlpha(0.28);
-  auto shade_band = [&] {
-    const Eigen::Vector2d a = axes.ToPixel(axes.x0, band_lo), b = axes.ToPixel(axes.x1, band_hi);
-    c.FillRect(a.x(), b.y(), b.x(), a.y(), band_color);
-  };
   if (band) {
     char label[96];
     std::snprintf(label, sizeof label, "95%% \u03c7\u00b2 band [%.3g, %.3g]", band_lo, band_hi);
     legend.push_back({.label = label, .line = {{}, 0.0, {}}, .patch = band_color});
   }
   for (const auto& l : lines) legend.push_back({.label = l.style.label, .line = l.style.stroke});
+  // Per-step NEES fills the plot area, so the legend goes to its right.
+  const double legend_w = LegendSize(legend).x();
+  Canvas c(kFigureWidthPx, 600, 3);
+  const Axes axes =
+      MakeAxes({112.0, 62.0, kFigureWidthPx - 44.0 - legend_w, 600 - 88.0}, NiceRange(0.0, xr[1]), {y0, y1}, true);
+  auto shade_band = [&] {
+    const Eigen::Vector2d a = axes.ToPixel(axes.x0, band_lo), b = axes.ToPixel(axes.x1, band_hi);
+    c.FillRect(a.x(), b.y(), b.x(), a.y(), band_color);
+  };
   const std::string suffix = run.scenario.empty() ? "" : " \u2014 " + run.scenario + ", seed " + std::to_string(run.seed);
-  const auto pts = DrawPanel(c, axes, lines, {"Pose NEES over time" + suffix, "time [s]", "NEES (log scale)"},
-                             band ? std::function<void()>(shade_band) : std::function<void()>());
-  DrawLegend(c, axes, legend, pts);
+  DrawPanel(c, axes, lines, {"Pose NEES over time" + suffix, "time [s]", "NEES (log scale)"},
+            band ? std::function<void()>(shade_band) : std::function<void()>());
+  DrawLegendAt(c, axes.area.right + 14.0, axes.area.top, legend);
   SaveFigure(c, stem);
   return true;
 }
