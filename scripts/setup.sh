@@ -4,7 +4,7 @@
 # --with-slurm also installs a single-node Slurm (for the job-array test).
 set -euo pipefail
 PACKAGES=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config ccache
   libbox2d-dev libeigen3-dev libceres-dev libosmesa6-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnanoflann-dev
