@@ -49,11 +49,12 @@ InitAttempt SolveFrom(const PoseGraphFile& file, const std::string& method, cons
 }
 
 // `auto` keeps the attempt that converged to the lowest chi2 (usable before not usable,
-// converged before stalled); within 1e-9 relative the earlier of file, lago, odometry wins.
+// converged before stalled); within 1e-6 relative (Ceres' default function_tolerance, at
+// which each solve stops: the same optimum) the earlier of file, lago, odometry wins.
 bool Better(const InitAttempt& a, const InitAttempt& b) {
   const auto rank = [](const PoseGraphSolveResult& r) { return (r.usable ? 2 : 0) + (r.termination == "CONVERGENCE"); };
   if (rank(a.result) != rank(b.result)) return rank(a.result) > rank(b.result);
-  return a.result.chi2_final < b.result.chi2_final * (1.0 - 1e-9);
+  return a.result.chi2_final < b.result.chi2_final * (1.0 - 1e-6);
 }
 
 // The requested initial guess solved; for `auto` every cheap one (the file's guess, LAGO,

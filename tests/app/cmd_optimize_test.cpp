@@ -18,7 +18,7 @@
 namespace slambox {
 namespace {
 
-constexpr double kDriftRadPerPose = 4e-4;
+constexpr double kDriftRadPerPose = 8e-3;
 
 std::string RunOptimize(std::vector<std::string> args) {
   CLI::App app;
@@ -89,7 +89,7 @@ TEST_F(OptimizeCommand, AutoTriesEveryInitializerAndSaysWhichItKept) {
   ASSERT_EQ(j["init_attempts"].size(), 3u);
   EXPECT_EQ(j["init_attempts"][0]["init"], j["init"]);  // the kept one first
   for (const auto& a : j["init_attempts"]) {
-    EXPECT_GE(a["chi2_final"].get<double>(), j["chi2_final"].get<double>() * (1 - 1e-9)) << a.dump();
+    EXPECT_GE(a["chi2_final"].get<double>(), j["chi2_final"].get<double>() * (1 - 1e-6)) << a.dump();
     if (a["termination"] == "CONVERGENCE") EXPECT_EQ(j["termination"], "CONVERGENCE");
   }
   const nlohmann::json one = nlohmann::json::parse(RunOptimize({dir_ + "/in.g2o", "--init", "odometry", "--json"}));
@@ -98,8 +98,9 @@ TEST_F(OptimizeCommand, AutoTriesEveryInitializerAndSaysWhichItKept) {
 }
 
 // The case: a public graph whose file guess is poor. Intel's guess bent by a smooth
-// heading drift (every odometry step turned by a further 0.4 mrad, ~40° over the run)
-// stalls from the file's guess; auto must reach the optimum (44.4178, data README) anyway.
+// heading drift (every step between consecutive poses turned by a further 8 mrad) stalls
+// from the file's guess (measured: chi2 42974 after the 100-iteration cap; 4 mrad still
+// ends in a local minimum, 59320); auto must reach the optimum (44.4178, data README).
 TEST_F(OptimizeCommand, AutoRecoversFromADriftedGuessOnIntel) {
   const std::string path = testing::PublicDataFile(SLAMBOX_SOURCE_DIR, "posegraph/intel.g2o");
   if (path.empty()) GTEST_SKIP() << "public data absent (../shared/data or $SLAMBOX_DATA)";

@@ -170,9 +170,20 @@ TEST(CarmenLog, CompressedFilesReadLikePlainOnesAndCorruptOnesFail) {
 TEST(CarmenLog, TimeOriginMapsLogTimesOntoStreamTimes) {
   // Messages out of file order at odd microseconds: the origin is the earliest ipc time,
   // and every event's log time t_s + origin is within dt/2 of the message's own.
+  // Timestamps in microseconds as CARMEN writes them (the helpers above keep 10 digits).
   const double t0 = 976052905.167303;
-  std::string text = Odom(SE2(0.1, 0, 0), t0 + 0.1004) + Odom(SE2(0, 0, 0), t0) +
-                     Flaser(181, 2.0, SE2(0.3, 0, 0), SE2(0.1, 0, 0), t0 + 0.1234567) + Odom(SE2(0.2, 0, 0), t0 + 0.2999);
+  const auto at = [](std::string line, double ts) {
+    std::ostringstream s;
+    s.setf(std::ios::fixed);
+    s.precision(7);
+    s << ts;
+    const auto mark = line.rfind(" host");
+    const auto start = line.rfind(' ', mark - 1);
+    return line.substr(0, start + 1) + s.str() + line.substr(mark);
+  };
+  std::string text = at(Odom(SE2(0.1, 0, 0), 1.0), t0 + 0.1004) + at(Odom(SE2(0, 0, 0), 1.0), t0) +
+                     at(Flaser(181, 2.0, SE2(0.3, 0, 0), SE2(0.1, 0, 0), 1.0), t0 + 0.1234567) +
+                     at(Odom(SE2(0.2, 0, 0), 1.0), t0 + 0.2999);
   const Stream s = ParseCarmenLog(text, "tiny.clf");
   ASSERT_TRUE(s.header.time_origin_s.has_value());
   EXPECT_EQ(*s.header.time_origin_s, t0);
