@@ -21,6 +21,40 @@ data=${SLAMBOX_DATA:-$here/../shared/data}
 algos=${ALGOS:-icp-poseslam,mrpt-icp-slam,mrpt-rbpf-slam}
 mkdir -p "$out/streams"
 
+# MRPT's peers as MRPT's own configuration files for real laser logs set them up
+# (slam/mrpt/README.md, "On real logs", lists each key and what cannot be expressed):
+# mrpt-icp-slam from config_files/icp-slam/icp-slam_demo_classic.ini, mrpt-rbpf-slam from
+# config_files/rbpf-slam/gridmapping_optimal_sampling.ini (grid map, 25 particles).
+peer_settings() {
+  case ",$algos," in *,mrpt-icp-slam,*|*,mrpt-rbpf-slam,*) echo "set:" ;; esac
+  case ",$algos," in *,mrpt-icp-slam,*) cat <<'SET'
+  algo.mrpt-icp-slam.icp_threshold_dist_m: 0.3
+  algo.mrpt-icp-slam.icp_threshold_ang_deg: 5
+  algo.mrpt-icp-slam.icp_alfa: 0.8
+  algo.mrpt-icp-slam.icp_smallest_threshold_dist_m: 0.05
+  algo.mrpt-icp-slam.icp_max_iterations: 80
+  algo.mrpt-icp-slam.icp_points_decimation: 5
+  algo.mrpt-icp-slam.min_icp_goodness: 0.40
+  algo.mrpt-icp-slam.insertion_lin_distance_m: 1.2
+  algo.mrpt-icp-slam.insertion_ang_distance_deg: 45
+  algo.mrpt-icp-slam.localization_lin_distance_m: 0.2
+  algo.mrpt-icp-slam.localization_ang_distance_deg: 5
+  algo.mrpt-icp-slam.map_min_point_distance_m: 0.05
+SET
+  esac
+  case ",$algos," in *,mrpt-rbpf-slam,*) cat <<'SET'
+  algo.mrpt-rbpf-slam.particles: 25
+  algo.mrpt-rbpf-slam.localize_lin_distance_m: 1.0
+  algo.mrpt-rbpf-slam.localize_ang_distance_deg: 40
+  algo.mrpt-rbpf-slam.insertion_lin_distance_m: 1.0
+  algo.mrpt-rbpf-slam.insertion_ang_distance_deg: 40
+  algo.mrpt-rbpf-slam.likelihood_sigma_hit_m: 0.2
+  algo.mrpt-rbpf-slam.likelihood_decimation: 5
+  algo.mrpt-rbpf-slam.grid_resolution_m: 0.07
+SET
+  esac
+}
+
 sweep=$out/relation_table.yaml
 scenarios=""
 relations=""
@@ -41,6 +75,7 @@ algorithms: [$algos]
 seeds: 1
 relations: {$relations}
 timeout_s: 3600
+$(peer_settings)
 EOF
 mv "$sweep.tmp" "$sweep"
 "$slambox" sweep "$sweep" -j "${JOBS:-1}" --no-figures --resume -o "$out/sweep" >&2
