@@ -19,11 +19,21 @@
 namespace slambox {
 namespace {
 
+enum class InitMethod { kAuto, kFile, kLago, kOdometry };
+const std::map<std::string, InitMethod> kInitMethods = {
+    {"auto", InitMethod::kAuto}, {"file", InitMethod::kFile}, {"lago", InitMethod::kLago}, {"odometry", InitMethod::kOdometry}};
+
+std::string InitName(InitMethod m) {
+  for (const auto& [name, method] : kInitMethods)
+    if (method == m) return name;
+  return "?";
+}
+
 struct OptimizeArgs {
   std::string graph_path;
   std::string out_path;
   std::string robust = "none";
-  std::string init = "auto";
+  InitMethod init = InitMethod::kAuto;
   double kernel_scale = 1.0;
   int max_iterations = 100;
   int threads = 1;
@@ -32,17 +42,17 @@ struct OptimizeArgs {
 
 // One initial guess solved: the method, its cost and the solution.
 struct InitAttempt {
-  std::string init;
+  InitMethod init;
   double init_time_s = 0.0;
   PoseGraph graph;
   PoseGraphSolveResult result;
 };
 
-InitAttempt SolveFrom(const PoseGraphFile& file, const std::string& method, const PoseGraphSolveOptions& options) {
+InitAttempt SolveFrom(const PoseGraphFile& file, InitMethod method, const PoseGraphSolveOptions& options) {
   InitAttempt a{method, 0.0, file.graph, {}};
   const auto t0 = std::chrono::steady_clock::now();
-  if (method == "odometry") a.graph.poses = SpanningTreeInitialization(a.graph);
-  if (method == "lago") a.graph.poses = LagoInitialization(a.graph);
+  if (method == InitMethod::kOdometry) a.graph.poses = SpanningTreeInitialization(a.graph);
+  if (method == InitMethod::kLago) a.graph.poses = LagoInitialization(a.graph);
   a.init_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   a.result = SolvePoseGraph(a.graph, options);
   return a;
@@ -59,15 +69,15 @@ bool Better(const InitAttempt& a, const InitAttempt& b) {
 
 // The requested initial guess solved; for `auto` every cheap one (the file's guess, LAGO,
 // the odometry chain: milliseconds each), the best kept and the others listed.
-std::vector<InitAttempt> SolveWithInit(const PoseGraphFile& file, const std::string& init, const std::string& path,
+std::vector<InitAttempt> SolveWithInit(const PoseGraphFile& file, InitMethod init, const std::string& path,
                                        const PoseGraphSolveOptions& options) {
-  if (init == "file" && !file.has_initial_guess)
+  if (init == InitMethod::kFile && !file.has_initial_guess)
     throw InputError(path, 0, "--init file, but the file has no VERTEX_SE2 / VERTEX2 lines (edges only)",
                      "use --init lago (or odometry) to compute an initial guess");
-  if (init != "auto") return {SolveFrom(file, init, options)};
+  if (init != InitMethod::kAuto) return {SolveFrom(file, init, options)};
   std::vector<InitAttempt> attempts;
-  for (const char* method : {"file", "lago", "odometry"})
-    if (std::string(method) != "file" || file.has_initial_guess) attempts.push_back(SolveFrom(file, method, options));
+  for (const InitMethod method : {InitMethod::kFile, InitMethod::kLago, InitMethod::kOdometry})
+    if (method != InitMethod::kFile || file.has_initial_guess) attempts.push_back(SolveFrom(file, method, options));
   size_t best = 0;
   for (size_t i = 1; i < attempts.size(); ++i)
     if (Better(attempts[i], attempts[best])) best = i;
@@ -92,7 +102,7 @@ void RunOptimize(const OptimizeArgs& args) {
   // ReadPoseGraph has already rejected edges to unknown vertices and non-PD information.
   const std::vector<InitAttempt> attempts = SolveWithInit(file, args.init, args.graph_path, options);
   const InitAttempt& chosen = attempts.front();
-  const std::string& init = chosen.init;
+  const std::string init = InitName(chosen.init);
   const PoseGraphSolveResult& result = chosen.result;
   file.graph = chosen.graph;
   double init_time_s = 0.0, time_s = 0.0;  // every attempt counts: auto pays for all of them
@@ -111,14 +121,14 @@ void RunOptimize(const OptimizeArgs& args) {
                         {"time_s", time_s},
                         {"termination", result.termination},
                         {"init", init},
-                        {"init_requested", args.init},
+                        {"init_requested", InitName(args.init)},
                         {"init_time_s", init_time_s},
                         {"robust", args.robust},
                         {"loop_closures", loop_edges},
                         {"loop_closures_downweighted", downweighted}};
     nlohmann::ordered_json tried = nlohmann::ordered_json::array();
     for (const InitAttempt& a : attempts)
-      tried.push_back({{"init", a.init},
+      tried.push_back({{"init", InitName(a.init)},
                        {"chi2_initial", a.result.chi2_initial},
                        {"chi2_final", a.result.chi2_final},
                        {"iterations", a.result.iterations},
@@ -133,7 +143,7 @@ void RunOptimize(const OptimizeArgs& args) {
     if (attempts.size() > 1) {
       std::printf("auto tried   ");
       for (const InitAttempt& a : attempts)
-        std::printf(" %s: chi2 %.6g in %d iterations (%s);", a.init.c_str(), a.result.chi2_final, a.result.iterations,
+        std::printf(" %s: chi2 %.6g in %d iterations (%s);", InitName(a.init).c_str(), a.result.chi2_final, a.result.iterations,
                     a.result.termination.c_str());
       std::printf("\n");
     }
@@ -170,8 +180,8 @@ void AddOptimizeCommand(CLI::App& app) {
   cmd->add_option("--init", args->init,
                   "initial guess: file (VERTEX lines), odometry (spanning tree), lago; auto = solve from each "
                   "(file only if it has vertices) and keep the lowest converged chi2")
-      ->check(CLI::IsMember({"auto", "file", "odometry", "lago"}))
-      ->capture_default_str();
+      ->transform(CLI::CheckedTransformer(kInitMethods, CLI::ignore_case).description("{auto,file,lago,odometry}"))
+      ->default_str("auto");
   cmd->add_option("--max-iterations", args->max_iterations, "Levenberg-Marquardt iteration cap")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
