@@ -144,6 +144,9 @@ json RunAndWrite(const RunRequest& request) {
   doc["seed"] = stream.header.seed;
   doc["duration_s"] = stream.header.duration_s;
   doc["distance_m"] = PathLength(stream.groundtruth);
+  // A converted log's clock at t = 0 (for `eval --relations ... --time-origin-s`), and the relations used.
+  if (stream.header.time_origin_s) doc["time_origin_s"] = *stream.header.time_origin_s;
+  if (!request.relations_path.empty()) doc["relations_file"] = request.relations_path;
   doc["algorithms"] = json::object();
   WriteTum((dir / "groundtruth.tum").string(), stream.groundtruth);
   WriteJson(dir / "world.json", {{"scenario", stream.header.scenario_name},

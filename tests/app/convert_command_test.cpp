@@ -110,7 +110,10 @@ TEST(Convert, RelationsScoreAConvertedLogInRunEvalAndSweep) {
   const Result r = Slambox("run " + stream + " --algo odometry --relations " + rel + " --no-figures -q -o " +
                            (dir / "run").string());
   ASSERT_EQ(r.code, 0) << r.output;
-  const json a = ReadJson(dir / "run" / "metrics.json").at("algorithms").at("odometry");
+  const json doc = ReadJson(dir / "run" / "metrics.json");
+  EXPECT_EQ(doc.at("time_origin_s"), 500.0);  // the log's first timestamp
+  EXPECT_EQ(doc.at("relations_file"), rel);
+  const json a = doc.at("algorithms").at("odometry");
   EXPECT_EQ(a.at("relation_count"), 2);
   EXPECT_EQ(a.at("relation_unmatched"), 1);
   EXPECT_NEAR(a.at("relation_trans_mean_m").get<double>(), 0.05, 1e-9);
