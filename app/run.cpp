@@ -27,26 +27,6 @@ namespace slambox {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-Overrides SplitOverrides(const std::vector<std::string>& sets) {
-  Overrides out;
-  for (const auto& s : sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw InputError("--set " + s, 0, "expected KEY=VALUE", "write e.g. --set sensors.lidar.sigma_range_m=0.05");
-    const std::string key = s.substr(0, eq);
-    if (key.rfind("algo.", 0) == 0) {
-      const auto dot = key.find('.', 5);
-      if (dot == std::string::npos || dot == 5 || dot + 1 == key.size())
-        throw InputError("--set " + s, 0, "an algorithm parameter needs algo.NAME.FIELD",
-                         "write e.g. --set algo.fastslam2.particles=200");
-      out.algo[key.substr(5, dot - 5)][key.substr(dot + 1)] = s.substr(eq + 1);
-    } else {
-      out.scenario.push_back(s);
-    }
-  }
-  return out;
-}
-
 Stream LoadOrSimulate(const std::string& input, std::uint64_t seed, bool seed_given,
                       const std::vector<std::string>& scenario_overrides) {
   if (fs::is_regular_file(input) && IsStreamFile(input)) {
@@ -56,29 +36,6 @@ Stream LoadOrSimulate(const std::string& input, std::uint64_t seed, bool seed_gi
     return ReadStream(input);
   }
   return Simulate(LoadScenario(input, scenario_overrides), seed);
-}
-
-std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors,
-                                           bool skip_unavailable, bool has_map) {
-  std::vector<std::string> names;
-  for (const auto& r : requested) {
-    if (r == "all") {
-      for (const auto& m : AllModules())
-        if (SensorsAllow(m, sensors, has_map)) names.push_back(m.name);
-      continue;
-    }
-    const ModuleInfo& m = FindModule(r);
-    if (!SensorsAllow(m, sensors, has_map) && skip_unavailable) continue;
-    if (!SensorsAllow(m, sensors))
-      throw InputError("--algo " + r, 0, "the stream lacks a sensor '" + r + "' needs",
-                       "add the sensor to the scenario or pick another algorithm (see `slambox algorithms`)");
-    if (!SensorsAllow(m, sensors, has_map))
-      throw InputError("--algo " + r, 0, "'" + r + "' localizes in a known map and the stream's world has no walls",
-                       "run it on a scenario (a converted real log carries no map)");
-    names.push_back(r);
-  }
-  if (names.empty()) throw InputError("--algo", 0, "no algorithm to run", "give --algo NAME[,NAME...] or all");
-  return names;
 }
 
 namespace {
@@ -103,40 +60,14 @@ void WriteJson(const fs::path& path, const json& j) { WriteFileAtomic(path.strin
 json RunAndWrite(const RunRequest& request) {
   const Overrides overrides = SplitOverrides(request.sets);
   const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
-  const World& world = stream.header.world;
-  const bool has_map = !world.wall_segments.empty() || !world.wall_circles.empty();
-  const std::vector<std::string> names =
-      ResolveAlgorithms(request.algorithms, stream.header.sensors, request.skip_unavailable, has_map);
-  for (const auto& [name, fields] : overrides.algo) {
-    FindModule(name);  // unknown module in --set is an error even when not run
-    if (std::find(names.begin(), names.end(), name) == names.end())
-      throw InputError("--set algo." + name, 0, "'" + name + "' is not among the algorithms run",
-                       "add it to --algo or drop the --set");
-  }
+  const std::vector<std::string> names = ResolveAlgorithms(request.algorithms, stream.header.sensors,
+                                                           request.skip_unavailable, HasMap(stream.header.world));
   // Build every module first: a bad --set fails before any file is written.
-  std::vector<std::unique_ptr<SlamModule>> modules;
-  for (const auto& name : names)
-    modules.push_back(FindModule(name).create(overrides.algo.count(name) ? overrides.algo.at(name) : ParamOverrides{}));
+  std::vector<std::unique_ptr<SlamModule>> modules = CreateModules(names, overrides.algo);
 
   const bool progress = !request.quiet && isatty(STDERR_FILENO);
   const fs::path dir(request.output_dir);
-  const GroundTruth gt{stream.groundtruth, stream.header.world};
-  EvalOptions options;
-  // With unknown ids a module's landmark ids are its own indices: match by assignment.
-  const auto& lm = stream.header.sensors.landmarks;
-  options.landmarks.matching = lm && lm->known_ids ? LandmarkMatching::kById : LandmarkMatching::kOptimal;
-  if (!request.relations_path.empty()) {
-    options.relations = ReadRelations(request.relations_path);
-    options.relation_matching.time_origin_s = stream.header.time_origin_s.value_or(0.0);
-    if (RelationsWithin(options.relations, stream.header.duration_s, options.relation_matching) == 0)
-      throw InputError(request.relations_path, 0,
-                       "no relation falls within the stream's time span (time origin " +
-                           std::to_string(options.relation_matching.time_origin_s) + " s, " +
-                           std::to_string(stream.header.duration_s) + " s long)",
-                       stream.header.time_origin_s ? "give the relations file of this log"
-                                                   : "the stream records no time origin: re-convert the log with "
-                                                     "`slambox convert carmen LOG -o STREAM`");
-  }
+  const EvalOptions options = RunEvalOptions(stream, request.relations_path);
   fs::create_directories(dir);
   json doc;
   doc["slambox_version"] = kVersion;
@@ -157,17 +88,17 @@ json RunAndWrite(const RunRequest& request) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
-    json metrics;
-    try {
-      const Estimate estimate = Replay(*modules[i], stream);
-      const Evaluation evaluation = EvaluateEstimate(gt, estimate, options);
-      metrics = evaluation.metrics;
-      WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
-      WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));
-      WriteJson(dir / "series" / (name + ".json"), evaluation.series);
-    } catch (const std::exception& e) {  // a failing module never takes the others down
-      metrics = {{"status", "failed"}, {"reason", e.what()}};
+    ModuleRun run = ReplayAndScore(*modules[i], stream, options);
+    if (run.estimate) {
+      try {
+        WriteTum((dir / (name + ".tum")).string(), Poses(*run.estimate));
+        WriteJson(dir / "estimates" / (name + ".json"), ToJson(*run.estimate));
+        WriteJson(dir / "series" / (name + ".json"), run.series);
+      } catch (const std::exception& e) {  // as a failing module: the others go on
+        run.metrics = {{"status", "failed"}, {"reason", e.what()}};
+      }
     }
+    const json& metrics = run.metrics;
     modules[i].reset();
     doc["algorithms"][name] = metrics;
     if (progress) std::cerr << " " << metrics.value("status", "?") << "\n";

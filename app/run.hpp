@@ -5,23 +5,14 @@
 //   DIR/estimates/<algo>.json, DIR/series/<algo>.json, DIR/figures/
 // A module that throws or diverges is recorded with its status; the others go on.
 #include <cstdint>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "core/params.hpp"
+#include "app/run_modules.hpp"
 #include "core/stream.hpp"
 
 namespace slambox {
-
-/// `--set` arguments split by destination: scenario keys, and `algo.NAME.FIELD` keys.
-struct Overrides {
-  std::vector<std::string> scenario;              ///< "dotted.key=value"
-  std::map<std::string, ParamOverrides> algo;     ///< module name -> FIELD -> value
-};
-/// Throws InputError for an argument without '=' or an `algo.` key without a field.
-Overrides SplitOverrides(const std::vector<std::string>& sets);
 
 /// A built-in scenario name, a scenario file, or a stream file (then `seed` and scenario
 /// overrides must be absent: a stream is already simulated).
@@ -45,11 +36,5 @@ struct RunRequest {
 
 /// Runs and writes the run folder; returns the metrics.json document.
 nlohmann::json RunAndWrite(const RunRequest& request);
-
-/// Module names for `--algo`: "all" expands to every module the sensors allow. A named
-/// module the sensors do not allow is an error, or skipped with `skip_unavailable` (sweeps
-/// list modules once for scenarios with different sensors).
-std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& requested, const SensorSuite& sensors,
-                                           bool skip_unavailable = false, bool has_map = true);
 
 }  // namespace slambox

@@ -269,4 +269,6 @@ bool IsStreamFile(const std::string& path) {
   return std::memcmp(head, kMagic, sizeof kMagic) == 0;
 }
 
+nlohmann::json StreamHeaderToJson(const StreamHeader& header) { return HeaderJson(header); }
+
 }  // namespace slambox

@@ -14,6 +14,7 @@
 //     5 groundtruth f64 t, x, y, theta
 //   255 end      u64 number of events, u64 number of ground-truth poses,
 //                u64 FNV-1a 64 checksum of every byte before the checksum
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/stream.hpp"
@@ -25,6 +26,8 @@ void WriteStream(const Stream& stream, const std::string& path);
 Stream ReadStream(const std::string& path);
 /// Only the header (no events are read or checked): for a converted log's time origin.
 StreamHeader ReadStreamHeader(const std::string& path);
+/// The header as written in the file (JSON): the Python module's `Stream.header` dict.
+nlohmann::json StreamHeaderToJson(const StreamHeader& header);
 /// True if the file starts with the stream magic (so commands can tell streams from scenarios).
 bool IsStreamFile(const std::string& path);
 

@@ -11,6 +11,7 @@ PACKAGES=(
   libpng-dev libfreetype-dev fonts-dejavu-core
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
+  python3-dev python3-pybind11 python3-numpy python3-pytest  # the Python module (python/), for /usr/bin/python3
   mrpt-common  # MRPT's own config_files/ (the peers' real-log settings come from them, slam/mrpt/README.md)
 )
 # MRPT's own applications (icp-slam, rbpf-slam, graphslam-engine), only for the cross-check
