@@ -3,6 +3,7 @@
 // the C++ records and Python objects / NumPy arrays, and one Bind* function per file.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <map>
 #include <memory>

@@ -103,7 +103,7 @@ PYBIND11_MODULE(slambox, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      py::object error = input_error(e.what());
+      py::object error = py::reinterpret_borrow<py::object>(input_error.ptr())(e.what());
       error.attr("file") = e.file();
       error.attr("line") = e.line();
       PyErr_SetObject(input_error.ptr(), error.ptr());

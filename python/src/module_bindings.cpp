@@ -4,6 +4,7 @@
 // traceback's last line as the reason (the other modules go on).
 #include <stdexcept>
 
+#include "core/slam_module.hpp"
 #include "core/stream_io.hpp"
 #include "python/src/bindings.hpp"
 

@@ -2,6 +2,7 @@
 `/usr/bin/python3 -m pytest python/tests/test_slambox.py::NAME`, one test per function."""
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -50,7 +51,7 @@ def test_load_scenario_applies_overrides():
 def test_bad_scenario_raises_input_error_with_file_and_line(tmp_path, cli):
     good = slambox.load_scenario("loop").yaml.splitlines()
     line = next(i for i, l in enumerate(good) if "sigma_range_m" in l)
-    good[line] = good[line].replace(good[line].split("sigma_range_m:")[1].split(",")[0].split("}")[0], " -1")
+    good[line] = re.sub(r"sigma_range_m: *[-+0-9.eE]+", "sigma_range_m: -1", good[line])
     bad = tmp_path / "bad.yaml"
     bad.write_text("\n".join(good) + "\n")
     with pytest.raises(slambox.InputError) as e:
@@ -94,7 +95,9 @@ def test_landmark_arrays_are_one_row_per_observation():
     assert lm.shape[1] == 4 and len(lm) > 0
     assert np.all(np.diff(lm[:, 0]) >= 0)
     assert np.all((lm[:, 2] >= -math.pi) & (lm[:, 2] < math.pi))
-    assert np.all(lm[:, 1] <= s.header["sensors"]["landmarks"]["range_max_m"])
+    cfg = s.header["sensors"]["landmarks"]  # true range within range_max_m, plus range noise
+    assert np.all(lm[:, 1] <= cfg["range_max_m"] + 6 * cfg["sigma_range_m"])
+    assert np.all(lm[:, 3] == np.round(lm[:, 3]))
 
 
 def test_stream_write_is_the_cli_stream_and_reads_back(tmp_path, cli):
