@@ -57,6 +57,7 @@ TEST(LoopClosure, CandidatesNearestFirstAfterEnoughTravel) {
   c.min_travel_m = 15;
   c.search_radius_m = 0.5;
   c.radius_per_travel = 0.0;
+  c.min_keyframe_gap = 1;
   const auto cand = FindLoopCandidates(poses, path, 4, c);
   ASSERT_EQ(cand.size(), 2u);
   EXPECT_EQ(cand[0].keyframe, 0);  // 0.1 m away
