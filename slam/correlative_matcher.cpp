@@ -78,6 +78,10 @@ struct Search {
   Candidate best;
   bool found = false;
   int evaluated = 0;
+  bool exclude = false;           ///< leaves within exclude_cells2 of (exclude_x, exclude_y) are skipped
+  int exclude_x = 0, exclude_y = 0;
+  double exclude_cells2 = 0.0;
+  std::vector<Candidate> roots_copy;
 
   // Depth-first over the children of candidates at `level`, best bound first.
   void Descend(std::vector<Candidate> candidates, int level) {
@@ -87,6 +91,8 @@ struct Search {
     for (const Candidate& c : candidates) {
       if (c.score < min_score || (found && c.score <= best.score)) break;  // sorted: the rest is worse
       if (level == 0) {
+        const double dx = c.x - exclude_x, dy = c.y - exclude_y;
+        if (exclude && dx * dx + dy * dy <= exclude_cells2) continue;
         best = c;
         found = true;
         continue;
@@ -182,8 +188,22 @@ CorrelativeMatch MatchCorrelative(const ScoreTable& table, const std::vector<Eig
         roots.push_back({static_cast<int>(i), x, y, Score(table, top, l.scans[i], x, y)});
         ++search.evaluated;
       }
+  Search runner_up = search;  // same roots, before the first pass consumes them
+  runner_up.roots_copy = roots;
+  runner_up.evaluated = 0;
   search.Descend(std::move(roots), top);
-  return ToMatch(table, l, guess, search.best, search.found, search.evaluated);
+  CorrelativeMatch m = ToMatch(table, l, guess, search.best, search.found, search.evaluated);
+  if (m.found && config.runner_up_radius_m > 0) {
+    runner_up.exclude = true;
+    runner_up.exclude_x = search.best.x;
+    runner_up.exclude_y = search.best.y;
+    const double r = config.runner_up_radius_m / table.resolution_m;
+    runner_up.exclude_cells2 = r * r;
+    runner_up.Descend(std::move(runner_up.roots_copy), top);
+    m.evaluated += runner_up.evaluated;
+    if (runner_up.found) m.runner_up_score = runner_up.best.score;
+  }
+  return m;
 }
 
 CorrelativeMatch MatchCorrelativeExhaustive(const ScoreTable& table, const std::vector<Eigen::Vector2d>& source,
@@ -203,7 +223,18 @@ CorrelativeMatch MatchCorrelativeExhaustive(const ScoreTable& table, const std::
           found = true;
         }
       }
-  return ToMatch(table, l, guess, best, found, evaluated);
+  CorrelativeMatch m = ToMatch(table, l, guess, best, found, evaluated);
+  if (!found || !(config.runner_up_radius_m > 0)) return m;
+  const double r = config.runner_up_radius_m / table.resolution_m;
+  for (size_t i = 0; i < l.scans.size(); ++i)
+    for (int x = -l.window_cells; x <= l.window_cells; ++x)
+      for (int y = -l.window_cells; y <= l.window_cells; ++y) {
+        const double dx = x - best.x, dy = y - best.y;
+        if (dx * dx + dy * dy <= r * r) continue;
+        const double s = Score(table, 0, l.scans[i], x, y);
+        if (s >= config.min_score) m.runner_up_score = std::max(m.runner_up_score, s);
+      }
+  return m;
 }
 
 }  // namespace slambox

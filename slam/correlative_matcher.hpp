@@ -54,6 +54,10 @@ struct CorrelativeSearchConfig {
   double angular_step_deg = 0.0;
   double max_range_for_step_m = 10.0;  ///< [m] cap on the range that sets the automatic step
   double min_score = 0.0;              ///< candidates scoring below this are pruned
+  /// [m] > 0: also find the best pose whose translation is farther than this from the
+  /// best one (CorrelativeMatch::runner_up_score), a measure of ambiguity (a corridor,
+  /// a symmetric room): a second branch-and-bound pass that skips leaves near the best.
+  double runner_up_radius_m = 0.0;
 };
 
 struct CorrelativeMatch {
@@ -61,6 +65,8 @@ struct CorrelativeMatch {
   SE2 T_map_source;    ///< best pose on the search lattice
   double score = 0.0;  ///< its CorrelativeScore
   int evaluated = 0;   ///< candidate scores computed (bounds and leaves), for cost reports
+  /// Best score farther than runner_up_radius_m from T_map_source (0 when none or not asked).
+  double runner_up_score = 0.0;
 };
 
 /// Branch-and-bound search: the exhaustive optimum's score over the lattice (between

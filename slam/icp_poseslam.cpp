@@ -45,6 +45,8 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("loop_table_sigma_m", c.loop_table.sigma_m, "m", "correlative score: std of the point-to-map distance");
   b.Bind("loop_table_levels", c.loop_table.levels, "-", "branch-and-bound levels");
   b.Bind("loop_min_score", c.loop_min_score, "-", "correlative score a closure needs");
+  b.Bind("loop_runner_up_radius_m", c.loop_runner_up_radius_m, "m", "ambiguity: runner-up match farther than this from the best");
+  b.Bind("loop_max_runner_up_ratio", c.loop_max_runner_up_ratio, "-", "ambiguity: runner-up score / best score must stay below this");
   b.Bind("loop_max_match_shift_m", c.loop_max_match_shift_m, "m", "ICP may move the correlative match at most this far");
   b.Bind("solve_every_keyframes", c.solve_every_keyframes, "-", "re-solve pending small closures after this many keyframes");
   b.Bind("solve_innovation_m", c.solve_innovation_m, "m", "a closure this far off the estimate is solved at once");
@@ -248,10 +250,11 @@ void IcpPoseSlam::CloseLoops(double t_s) {
     search.linear_window_m = c.radius_m;
     search.angular_window_deg = c.angle_rad / kDegToRad;
     search.min_score = config_.loop_min_score;
+    search.runner_up_radius_m = config_.loop_runner_up_radius_m;
     const CorrelativeMatch m = MatchCorrelative(target.table, source, guess, search);
     ++proposed_;
     const double t_old = keyframes_[static_cast<size_t>(c.keyframe)].t_s;
-    if (!m.found) {
+    if (!m.found || m.runner_up_score >= config_.loop_max_runner_up_ratio * m.score) {  // no match, or ambiguous
       estimate_.loop_closures.push_back({t_old, keyframes_.back().t_s, guess, false});
       continue;
     }

@@ -33,7 +33,7 @@ struct IcpPoseSlamConfig {
   bool adaptive_gate = true;            ///< KISS-ICP adaptive gate for the front end
   /// Front-end target: the latest keyframe and this many before it, merged in its frame
   /// (scan-to-submap, kd-tree); 0 = the latest keyframe's scan alone (projection).
-  int local_map_keyframes = 0;
+  int local_map_keyframes = 3;
   double local_map_voxel_m = 0.05;      ///< [m] voxel size of the merged local map
   double keyframe_distance_m = 0.5;     ///< [m] new keyframe after this much translation
   double keyframe_angle_deg = 20.0;     ///< [deg] ... or this much rotation
@@ -46,6 +46,8 @@ struct IcpPoseSlamConfig {
   int loop_submap_keyframes = 5;         ///< loop target: the candidate keyframe and this many on each side
   ScoreTableConfig loop_table{.resolution_m = 0.05, .sigma_m = 0.05, .levels = 5};  ///< correlative search grid
   double loop_min_score = 0.6;           ///< correlative score (mean of exp(-d^2/2 sigma^2)) a closure needs
+  double loop_runner_up_radius_m = 0.5;  ///< [m] ambiguity: best score farther than this from the match ...
+  double loop_max_runner_up_ratio = 0.85;  ///< ... must stay below this fraction of the match's score
   double loop_max_match_shift_m = 0.1;   ///< [m] ICP may move the correlative match at most this far
   int solve_every_keyframes = 20;        ///< re-solve pending small closures after this many keyframes
   double solve_innovation_m = 0.05;      ///< [m] a closure this far off the estimate is solved at once

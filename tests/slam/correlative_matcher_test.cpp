@@ -61,15 +61,36 @@ TEST(CorrelativeMatcher, BranchAndBoundEqualsExhaustiveOnRandomMaps) {
     for (int i = 0; i < 60; ++i) source.emplace_back(u(rng) * 0.5, u(rng) * 0.5);
     const ScoreTable t = MakeScoreTable(map, {.resolution_m = 0.1, .sigma_m = 0.1, .levels = 4});
     const SE2 guess(v(rng), v(rng), v(rng));
-    const CorrelativeSearchConfig c{.linear_window_m = 1.0, .angular_window_deg = 10.0, .angular_step_deg = 2.5};
+    const CorrelativeSearchConfig c{
+        .linear_window_m = 1.0, .angular_window_deg = 10.0, .angular_step_deg = 2.5, .runner_up_radius_m = 0.3};
     const CorrelativeMatch bb = MatchCorrelative(t, source, guess, c);
     const CorrelativeMatch ex = MatchCorrelativeExhaustive(t, source, guess, c);
     ASSERT_TRUE(ex.found);
     ASSERT_TRUE(bb.found);
     EXPECT_EQ(bb.score, ex.score) << "seed " << seed;
+    EXPECT_EQ(bb.runner_up_score, ex.runner_up_score) << "seed " << seed;
+    EXPECT_GT(bb.runner_up_score, 0.0);
+    EXPECT_LE(bb.runner_up_score, bb.score);
     // Its pose scores what it claims (the lattice pose rescored from scratch).
     EXPECT_NEAR(CorrelativeScore(t, source, bb.T_map_source), bb.score, 1e-9) << "seed " << seed;
   }
+}
+
+// In a featureless corridor every shift along it scores alike: the runner-up far from the
+// best scores nearly as much. In a room it does not.
+TEST(CorrelativeMatcher, RunnerUpExposesCorridorAmbiguity) {
+  std::mt19937_64 rng(4);
+  const CorrelativeSearchConfig c{.linear_window_m = 1.5, .angular_window_deg = 5, .runner_up_radius_m = 0.5};
+  const auto ratio = [&](const std::vector<Segment>& walls, const SE2& A, const SE2& T) {
+    const LaserScanEvent a = testing::RayCastScan(walls, A, 360, 0.01, rng);
+    const LaserScanEvent b = testing::RayCastScan(walls, A * T, 360, 0.01, rng);
+    const ScoreTable t = MakeScoreTable(ScanToPoints(a).points, {});
+    const CorrelativeMatch m = MatchCorrelative(t, ScanToPoints(b).points, SE2(), c);
+    EXPECT_TRUE(m.found);
+    return m.runner_up_score / m.score;
+  };
+  EXPECT_GT(ratio(testing::CorridorWalls(), SE2(0, 0, 0), SE2(0.3, 0.05, 0.02)), 0.9);
+  EXPECT_LT(ratio(testing::RoomWalls(), SE2(-1, -0.5, 0), SE2(0.3, 0.05, 0.02)), 0.8);
 }
 
 TEST(CorrelativeMatcher, MinScorePrunesEverything) {
