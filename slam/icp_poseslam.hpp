@@ -47,7 +47,7 @@ struct IcpPoseSlamConfig {
   ScoreTableConfig loop_table{.resolution_m = 0.05, .sigma_m = 0.05, .levels = 5};  ///< correlative search grid
   double loop_min_score = 0.6;           ///< correlative score (mean of exp(-d^2/2 sigma^2)) a closure needs
   double loop_runner_up_radius_m = 0.5;  ///< [m] ambiguity: best score farther than this from the match ...
-  double loop_max_runner_up_ratio = 0.85;  ///< ... must stay below this fraction of the match's score
+  double loop_max_runner_up_ratio = 0.95;  ///< ... must stay below this fraction of the match's score
   double loop_max_match_shift_m = 0.1;   ///< [m] ICP may move the correlative match at most this far
   int solve_every_keyframes = 20;        ///< re-solve pending small closures after this many keyframes
   double solve_innovation_m = 0.05;      ///< [m] a closure this far off the estimate is solved at once
