@@ -111,14 +111,14 @@ void AddEvalCommand(CLI::App& app) {
     if (est.trajectory.empty())
       throw InputError(args->est_path, 0, "no pose in the file", "give a non-empty TUM file");
     const Evaluation ev = EvaluateEstimate(gt, est, options);
-    if (ev.metrics["matched_poses"].get<size_t>() == 0)
+    if (ev.metrics.matched_poses.value_or(0) == 0)
       throw InputError(args->est_path, 0,
                        "no timestamp matches the ground truth within " + std::to_string(args->t_max_diff_s) + " s",
                        "check that both files use the same clock, or raise --t-max-diff / use --interpolate");
     if (args->json)
-      std::cout << ev.metrics.dump(2) << "\n";
+      std::cout << ToJson(ev.metrics).dump(2) << "\n";
     else
-      PrintTable(ev.metrics, std::cout);
+      PrintTable(ToJson(ev.metrics), std::cout);
   });
 }
 
