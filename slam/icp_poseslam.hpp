@@ -23,22 +23,24 @@
 
 namespace slambox {
 
+/// Information of an ICP edge: the capped ICP Hessian, or fixed sigmas.
+enum class EdgeInformationSource { kHessian, kFixed };
+
 struct IcpPoseSlamConfig {
-  IcpConfig icp;                        ///< front end: scan to keyframe
-  IcpChoices icp_choices{.robust_kernel = "geman-mcclure"};  ///< redescending weights: movers do not drag ICP
+  /// Front end, scan to keyframe; redescending weights: movers do not drag ICP.
+  IcpConfig icp{.correspondence = IcpCorrespondence::kProjection, .robust_kernel = IcpRobustKernel::kGemanMcClure};
   IcpConfig loop_icp{.correspondence = IcpCorrespondence::kKdTree, .max_iterations = 50,
                      .max_correspondence_m = 0.5};
-  IcpChoices loop_icp_choices{.correspondence = "kdtree"};
   bool adaptive_gate = true;            ///< KISS-ICP adaptive gate for the front end
   double keyframe_distance_m = 0.5;     ///< [m] new keyframe after this much translation
   double keyframe_angle_deg = 20.0;     ///< [deg] ... or this much rotation
-  std::string edge_information = "hessian";  ///< hessian (capped) | fixed
+  EdgeInformationSource edge_information = EdgeInformationSource::kHessian;
   double info_cap_sigma_xy_m = 0.005;    ///< [m] Hessian information cap, translation
   double info_cap_sigma_theta_deg = 0.1; ///< [deg] Hessian information cap, heading
   double fixed_sigma_xy_m = 0.02;        ///< [m] fixed information, translation
   double fixed_sigma_theta_deg = 0.5;    ///< [deg] fixed information, heading
   LoopClosureConfig loop;
-  std::string loop_kernel = "dcs";       ///< none | huber | cauchy | dcs, on loop edges only
+  RobustKernel loop_kernel = RobustKernel::kDcs;  ///< on loop edges only
   double loop_kernel_scale = 100.0;        ///< Huber/Cauchy scale on the whitened residual; DCS Phi
   double loop_accept_weight = 0.5;       ///< a loop edge the back-end weights below this counts as rejected
   int solve_max_iterations = 50;

@@ -72,8 +72,11 @@ TEST(Metrics, SerializerAndReaderRoundTrip) {
   EXPECT_TRUE(j.at("loop_closures").is_null());        // builds no graph
   EXPECT_TRUE(j.at("matched_poses").is_number_integer());
   EXPECT_FALSE(j.contains("reason"));                  // empty strings are left out
-  for (const auto& d : MetricTable())
-    if (d.key != "reason" && d.key != "note" && d.key != "alignment_reason") EXPECT_TRUE(j.contains(d.key)) << d.key;
+  for (const auto& d : MetricTable()) {
+    if (d.key != "reason" && d.key != "note" && d.key != "alignment_reason") {
+      EXPECT_TRUE(j.contains(d.key)) << d.key;
+    }
+  }
   const Metrics back = MetricsFromJson(j, "x.json");
   EXPECT_EQ(ToJson(back).dump(), j.dump());
   EXPECT_EQ(back.ate.rmse, ev.metrics.ate.rmse);
