@@ -29,6 +29,14 @@ std::vector<SE2> AlignedEstimate(const Association& a, AlignMode mode, const Ali
   return a.estimate;
 }
 
+// relation_* from a relations file (eval/relations.hpp); without one they come from the RPE pairs.
+void AddFileRelations(const std::vector<StampedPose>& est_poses, const EvalOptions& o, Metrics& m) {
+  if (o.relations.empty()) return;
+  const RelationErrors e = ComputeRelationErrors(o.relations, est_poses, o.relation_matching);
+  m.relation = ComputeRelationMetric(e.translation_m, e.rotation_deg);
+  m.relation_unmatched = e.unmatched;
+}
+
 void AddTrajectoryMetrics(const Association& a, const std::vector<SE2>& est, const EvalOptions& o,
                           const AlignmentResult& umeyama, Metrics& m, ErrorSeries& series) {
   const AbsoluteErrors ate = AbsoluteTrajectoryErrors(a.groundtruth, est);
@@ -52,7 +60,7 @@ void AddTrajectoryMetrics(const Association& a, const std::vector<SE2>& est, con
   m.rpe_delta = o.rpe.delta;
   m.rpe_delta_unit = DeltaUnitName(o.rpe.unit);
   m.rpe_all_pairs = o.rpe.all_pairs;
-  m.relation = ComputeRelationMetric(rpe.translation_m, rpe.rotation_deg);
+  if (o.relations.empty()) m.relation = ComputeRelationMetric(rpe.translation_m, rpe.rotation_deg);
 
   const KittiResult kitti = KittiSegmentErrors(a.groundtruth, est, o.kitti);
   m.kitti_segments = kitti.segments;
@@ -87,6 +95,7 @@ void AddConsistency(const Association& a, const Estimate& est, const EvalOptions
 
 void AddLandmarks(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, const AlignmentResult& umeyama,
                   Metrics& m, ErrorSeries& series) {
+  if (gt.trajectory.empty()) return;  // no ground truth (a converted log): nothing to compare with (null)
   if (est.landmarks.empty()) return;  // a module without a landmark map: not applicable (null)
   const SE2 T = umeyama.valid ? umeyama.T_gt_est : SE2();
   const LandmarkMapResult r = EvaluateLandmarkMap(est.landmarks, gt.world.landmarks, T, o.landmarks);
@@ -103,6 +112,7 @@ void AddLandmarks(const GroundTruth& gt, const Estimate& est, const EvalOptions&
 }
 
 void AddMaps(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, Metrics& m) {
+  if (gt.trajectory.empty()) return;  // no ground truth: the stream's world is empty, not the truth
   if (!est.grid || est.grid->width <= 0 || est.grid->height <= 0 || !(est.grid->resolution_m > 0.0)) return;
   const GridMapResult g = EvaluateGridMap(*est.grid, gt.world, o.grid);
   m.grid_cell_error = g.cell_error;
@@ -113,10 +123,12 @@ void AddMaps(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, M
 
 void AddLoopClosures(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, Metrics& m) {
   const LoopClosureResult r = EvaluateLoopClosures(est.loop_closures, gt.trajectory, o.loop_closures);
-  m.revisit_episodes = r.revisit_episodes;
+  const bool truth = !gt.trajectory.empty();  // precision, recall and revisits need the true path
+  if (truth) m.revisit_episodes = r.revisit_episodes;
   if (est.loop_closures.empty() && est.pose_graph.nodes.empty()) return;  // builds no graph: null
   m.loop_closures = r.accepted;
   m.loop_closures_proposed = r.proposed;
+  if (!truth) return;
   m.loop_closure_precision = r.precision;
   m.loop_closure_recall = r.recall;
 }
@@ -165,6 +177,7 @@ Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const Ev
   const AlignmentResult umeyama = UmeyamaAlignment(a.estimate, a.groundtruth);
   const std::vector<SE2> est_aligned = AlignedEstimate(a, o.align, umeyama);
   AddTrajectoryMetrics(a, est_aligned, o, umeyama, m, series);
+  AddFileRelations(est_poses, o, m);
   AddConsistency(a, est, o, m, series);
   AddLandmarks(gt, est, o, umeyama, m, series);
   AddMaps(gt, est, o, m);

@@ -85,6 +85,7 @@ std::vector<MetricDescriptor> BuildTable() {
   t.Add("rpe_delta_unit", "RPE delta unit", "", neither, Of<&Metrics::rpe_delta_unit>);
   t.Add("rpe_all_pairs", "RPE all pairs", "", neither, Of<&Metrics::rpe_all_pairs>);
   t.Add("relation_count", "relations", "", neither, In<&Metrics::relation, &RelationMetric::relations>);
+  t.Add("relation_unmatched", "unmatched relations", "", neither, Of<&Metrics::relation_unmatched>);
   t.Add("relation_trans_mean_m", "relation trans mean [m]", "m", lower,
         In<&Metrics::relation, &RelationMetric::trans_mean_m>);
   t.Add("relation_trans_std_m", "relation trans std [m]", "m", lower,

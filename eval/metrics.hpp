@@ -47,7 +47,8 @@ struct Metrics {
   std::string rpe_delta_unit;
   bool rpe_all_pairs = false;
 
-  RelationMetric relation = ComputeRelationMetric({}, {});
+  RelationMetric relation = ComputeRelationMetric({}, {});  ///< the RPE pairs', or a relations file's
+  std::optional<std::int64_t> relation_unmatched;            ///< relations of the file left out; null without one
   std::optional<std::int64_t> kitti_segments;
   double kitti_trans_percent = NAN, kitti_rot_deg_per_m = NAN;
 
