@@ -5,19 +5,31 @@
 
 namespace slambox {
 
+const EnumNames<EkfAssociation>& EkfAssociationNames() {
+  static const EnumNames<EkfAssociation> names = {{EkfAssociation::kAuto, "auto"},
+                                                  {EkfAssociation::kKnown, "known"},
+                                                  {EkfAssociation::kNearestNeighbour, "nn"},
+                                                  {EkfAssociation::kJcbb, "jcbb"}};
+  return names;
+}
+
 void BindParams(EkfSlamConfig& c, ParamBinder& b) {
-  b.Bind("association", c.association, {"auto", "known", "nn", "jcbb"},
+  b.Bind("association", c.association, EkfAssociationNames(),
          "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");
-  b.Bind("gate_accept_chi2", c.gate_accept_chi2, "chi2", "accept the nearest landmark if its d^2 is below");
-  b.Bind("gate_new_chi2", c.gate_new_chi2, "chi2", "new landmark if every d^2 is above (ambiguous in between)");
-  b.Bind("jcbb_joint_probability", c.jcbb_joint_probability, "-", "JCBB joint compatibility confidence");
-  b.Bind("jcbb_max_nodes", c.jcbb_max_nodes, "nodes", "JCBB search budget per scan");
-  b.Bind("confirm_sightings", c.confirm_sightings, "scans", "sightings that confirm a tentative landmark");
-  b.Bind("tentative_max_misses", c.tentative_max_misses, "scans", "misses in view that delete a tentative landmark");
-  b.Bind("visibility_margin_m", c.visibility_margin_m, "m", "a landmark is expected in view this far inside range_max");
+  b.Bind("gate_accept_chi2", c.gate_accept_chi2, "chi2", "accept the nearest landmark if its d^2 is below", Above(0));
+  b.Bind("gate_new_chi2", c.gate_new_chi2, "chi2", "new landmark if every d^2 is above (ambiguous in between)",
+         Above(0));
+  b.Bind("jcbb_joint_probability", c.jcbb_joint_probability, "-", "JCBB joint compatibility confidence",
+         Range{.min = 0, .max = 1, .min_open = true, .max_open = true});
+  b.Bind("jcbb_max_nodes", c.jcbb_max_nodes, "nodes", "JCBB search budget per scan", AtLeast(1));
+  b.Bind("confirm_sightings", c.confirm_sightings, "scans", "sightings that confirm a tentative landmark", AtLeast(1));
+  b.Bind("tentative_max_misses", c.tentative_max_misses, "scans", "misses in view that delete a tentative landmark",
+         AtLeast(1));
+  b.Bind("visibility_margin_m", c.visibility_margin_m, "m", "a landmark is expected in view this far inside range_max",
+         AtLeast(0));
   b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
-  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
-  b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance");
+  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance", Above(0));
+  b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
 }
 
 EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {}
@@ -28,7 +40,8 @@ void EkfSlam::Start(const StreamHeader& header) {
   R_ = config_.observation_noise_scale * ObservationCovariance(sensor);
   range_max_m_ = sensor.range_max_m;
   half_fov_rad_ = sensor.fov_deg * M_PI / 360.0;
-  known_ids_ = config_.association == "known" || (config_.association == "auto" && sensor.known_ids);
+  known_ids_ = config_.association == EkfAssociation::kKnown ||
+               (config_.association == EkfAssociation::kAuto && sensor.known_ids);
   state_ = MakeInitialState(header.start_pose);
   tracks_.clear();
   key_of_id_.clear();
@@ -80,7 +93,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
                                config_.jcbb_max_nodes};
   std::vector<int> target;
   if (known_ids_) target = AssociateKnownIds(obs);
-  else if (config_.association == "nn") target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
+  else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
   else target = AssociateJcbb(state_, z, R_, gates).landmark;
 
   // One batched update with every matched observation, linearized at the current

@@ -16,9 +16,14 @@
 
 namespace slambox {
 
+/// Data association: known ids if the sensor reports them, else JCBB (auto); known ids;
+/// nearest neighbour; joint compatibility branch and bound.
+enum class EkfAssociation { kAuto, kKnown, kNearestNeighbour, kJcbb };
+/// auto, known, nn, jcbb.
+const EnumNames<EkfAssociation>& EkfAssociationNames();
+
 struct EkfSlamConfig {
-  /// "auto": known ids if the sensor reports them, else JCBB; or "known", "nn", "jcbb".
-  std::string association = "auto";
+  EkfAssociation association = EkfAssociation::kAuto;
   double gate_accept_chi2 = 9.21;       ///< [chi2, 2 dof] accept the nearest landmark below this d^2
   double gate_new_chi2 = 25.0;          ///< [chi2, 2 dof] new landmark if every d^2 is above this
   double jcbb_joint_probability = 0.99; ///< [-] JCBB joint compatibility confidence

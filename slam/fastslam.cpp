@@ -25,7 +25,10 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
   b.Bind("report_min_counter", c.report_min_counter, "-", "unknown ids: report landmarks whose counter reached this");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
-  b.Bind("trajectory", c.trajectory, {"best", "mean", "path_mean"},
+  static const EnumNames<FastSlamTrajectory> kTrajectoryNames = {{FastSlamTrajectory::kBest, "best"},
+                                                                  {FastSlamTrajectory::kMean, "mean"},
+                                                                  {FastSlamTrajectory::kPathMean, "path_mean"}};
+  b.Bind("trajectory", c.trajectory, kTrajectoryNames,
          "best particle's path | filtered weighted mean | weighted mean of the final particles' paths");
 }
 void BindParams(FastSlam2Config& c, ParamBinder& b) { BindParams(static_cast<FastSlamConfig&>(c), b); }
@@ -42,8 +45,6 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
   if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
   if (c.snapshot_period_s < 0) fail("snapshot_period_s", "must not be negative", "0 disables snapshots");
-  if (c.trajectory != "best" && c.trajectory != "mean" && c.trajectory != "path_mean")
-    fail("trajectory", "unknown choice '" + c.trajectory + "'", "use best, mean or path_mean");
   if (c.visibility_margin_m < 0 || c.candidate_margin_m < 0) fail("visibility_margin_m", "margins must not be negative", "e.g. 0.5");
 }
 
@@ -229,9 +230,9 @@ std::vector<PoseEstimate> FastSlam::PathMean() const {
 Estimate FastSlam::Finish() {
   if (particles_.empty()) return std::move(estimate_);
   const FastSlamParticle& best = particles_[BestParticle()];
-  if (config_.trajectory == "mean") {
+  if (config_.trajectory == FastSlamTrajectory::kMean) {
     estimate_.trajectory = cloud_;
-  } else if (config_.trajectory == "path_mean") {
+  } else if (config_.trajectory == FastSlamTrajectory::kPathMean) {
     estimate_.trajectory = PathMean();
   } else {  // the best particle's ancestry, with the cloud's covariance at the same times
     size_t k = 0;

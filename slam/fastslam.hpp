@@ -24,6 +24,10 @@
 
 namespace slambox {
 
+/// Estimate::trajectory: the best particle's path, the filtered weighted mean pose, or the
+/// weighted mean of the final particles' ancestral paths.
+enum class FastSlamTrajectory { kBest, kMean, kPathMean };
+
 struct FastSlamConfig {
   int particles = 100;  ///< M
   /// p0 is the density N(nu; 0, R) of an innovation at this squared Mahalanobis distance
@@ -37,7 +41,7 @@ struct FastSlamConfig {
   int report_min_counter = 10;       ///< unknown ids: report landmarks whose counter reached this (10 Hz: ~1 s net sightings)
   double motion_noise_scale = 1.0;   ///< factor on the odometry model's covariance
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
-  std::string trajectory = "best";   ///< best | mean | path_mean: what goes into Estimate::trajectory
+  FastSlamTrajectory trajectory = FastSlamTrajectory::kBest;  ///< what goes into Estimate::trajectory
 };
 void BindParams(FastSlamConfig& c, ParamBinder& b);
 

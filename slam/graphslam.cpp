@@ -7,13 +7,14 @@ namespace slambox {
 
 void BindParams(GraphSlamConfig& c, ParamBinder& b) {
   b.Bind("keyframe_every_odometry", c.keyframe_every_odometry, "steps",
-         "a landmark scan makes a keyframe after this many odometry steps (0 = off)");
+         "a landmark scan makes a keyframe after this many odometry steps (0 = off)", AtLeast(0));
   b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m",
-         "... or after this much travel (0 = off; both off = every scan)");
-  b.Bind("solve_every_keyframes", c.solve_every_keyframes, "keyframes", "also solve during the run (0 = at the end)");
-  b.Bind("max_iterations", c.max_iterations, "-", "Ceres iterations per solve");
+         "... or after this much travel (0 = off; both off = every scan)", AtLeast(0));
+  b.Bind("solve_every_keyframes", c.solve_every_keyframes, "keyframes", "also solve during the run (0 = at the end)",
+         AtLeast(0));
+  b.Bind("max_iterations", c.max_iterations, "-", "Ceres iterations per solve", AtLeast(1));
   b.Bind("compute_covariance", c.compute_covariance, "-", "marginal covariances from ceres::Covariance");
-  b.Bind("huber_scale", c.huber_scale, "sigma", "Huber loss on range-bearing residuals (0 = none)");
+  b.Bind("huber_scale", c.huber_scale, "sigma", "Huber loss on range-bearing residuals (0 = none)", AtLeast(0));
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
 }
 
@@ -21,7 +22,8 @@ void GraphSlam::Start(const StreamHeader& header) {
   frontend_.Start(header);
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
   const LandmarkSensorConfig sensor = header.sensors.landmarks.value_or(LandmarkSensorConfig{});
-  known_ids_ = config_.frontend.association == "known" || (config_.frontend.association == "auto" && sensor.known_ids);
+  known_ids_ = config_.frontend.association == EkfAssociation::kKnown ||
+               (config_.frontend.association == EkfAssociation::kAuto && sensor.known_ids);
   graph_ = LandmarkGraph{};
   graph_.observation_covariance = config_.frontend.observation_noise_scale * ObservationCovariance(sensor);
   graph_.poses.push_back(header.start_pose.vector());

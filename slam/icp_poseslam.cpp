@@ -10,50 +10,47 @@ namespace slambox {
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 
-RobustKernel ParseKernel(const std::string& name) {
-  if (name == "none") return RobustKernel::kNone;
-  if (name == "huber") return RobustKernel::kHuber;
-  if (name == "cauchy") return RobustKernel::kCauchy;
-  return RobustKernel::kDcs;
-}
+const EnumNames<EdgeInformationSource> kEdgeInformationNames = {{EdgeInformationSource::kHessian, "hessian"},
+                                                             {EdgeInformationSource::kFixed, "fixed"}};
 }  // namespace
 
 void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
-  BindIcpParams(c.icp, c.icp_choices, b);
-  BindIcpParams(c.loop_icp, c.loop_icp_choices, b, "loop_icp_");
+  BindIcpParams(c.icp, b);
+  BindIcpParams(c.loop_icp, b, "loop_icp_");
   b.Bind("adaptive_gate", c.adaptive_gate, "-", "KISS-ICP adaptive correspondence gate for the front end");
-  b.Bind("local_map_keyframes", c.local_map_keyframes, "-", "front end registers to this many keyframes before the latest too (0 = latest only)");
-  b.Bind("local_map_voxel_m", c.local_map_voxel_m, "m", "voxel size of the front end's local map");
-  b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m", "new keyframe after this much translation");
-  b.Bind("keyframe_angle_deg", c.keyframe_angle_deg, "deg", "new keyframe after this much rotation");
-  b.Bind("edge_information", c.edge_information, {"hessian", "fixed"}, "information of ICP edges");
-  b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "cap on Hessian information, translation");
-  b.Bind("info_cap_sigma_theta_deg", c.info_cap_sigma_theta_deg, "deg", "cap on Hessian information, heading");
-  b.Bind("fixed_sigma_xy_m", c.fixed_sigma_xy_m, "m", "fixed edge information, translation");
-  b.Bind("fixed_sigma_theta_deg", c.fixed_sigma_theta_deg, "deg", "fixed edge information, heading");
+  b.Bind("local_map_keyframes", c.local_map_keyframes, "-", "front end registers to this many keyframes before the latest too (0 = latest only)", AtLeast(0));
+  b.Bind("local_map_voxel_m", c.local_map_voxel_m, "m", "voxel size of the front end's local map", Above(0));
+  b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m", "new keyframe after this much translation", Above(0));
+  b.Bind("keyframe_angle_deg", c.keyframe_angle_deg, "deg", "new keyframe after this much rotation", Above(0));
+  b.Bind("edge_information", c.edge_information, kEdgeInformationNames, "information of ICP edges");
+  b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "cap on Hessian information, translation", Above(0));
+  b.Bind("info_cap_sigma_theta_deg", c.info_cap_sigma_theta_deg, "deg", "cap on Hessian information, heading",
+         Above(0));
+  b.Bind("fixed_sigma_xy_m", c.fixed_sigma_xy_m, "m", "fixed edge information, translation", Above(0));
+  b.Bind("fixed_sigma_theta_deg", c.fixed_sigma_theta_deg, "deg", "fixed edge information, heading", Above(0));
   b.Bind("loop_min_travel_m", c.loop.min_travel_m, "m", "path between keyframes before a loop may close");
   b.Bind("loop_search_radius_m", c.loop.search_radius_m, "m", "base loop search radius");
   b.Bind("loop_radius_per_travel", c.loop.radius_per_travel, "m/m", "search radius growth per metre travelled");
-  b.Bind("loop_window_sigmas", c.loop.window_sigmas, "-", "search window: this many std of the relative pose");
+  b.Bind("loop_window_sigmas", c.loop.window_sigmas, "-", "search window: this many std of the relative pose", Above(0));
   b.Bind("loop_max_search_radius_m", c.loop.max_search_radius_m, "m", "search radius cap");
   b.Bind("loop_search_angle_deg", c.loop.search_angle_deg, "deg", "base angular search window");
   b.Bind("loop_max_search_angle_deg", c.loop.max_search_angle_deg, "deg", "angular search window cap");
   b.Bind("loop_max_candidates", c.loop.max_candidates, "-", "loop verifications per keyframe");
   b.Bind("loop_min_keyframe_gap", c.loop.min_keyframe_gap, "-", "candidates at least this many keyframes apart");
   b.Bind("loop_submap_keyframes", c.loop_submap_keyframes, "-", "loop target: keyframes each side of the candidate");
-  b.Bind("loop_table_resolution_m", c.loop_table.resolution_m, "m", "correlative search grid cell");
-  b.Bind("loop_table_sigma_m", c.loop_table.sigma_m, "m", "correlative score: std of the point-to-map distance");
-  b.Bind("loop_table_levels", c.loop_table.levels, "-", "branch-and-bound levels");
+  b.Bind("loop_table_resolution_m", c.loop_table.resolution_m, "m", "correlative search grid cell", Above(0));
+  b.Bind("loop_table_sigma_m", c.loop_table.sigma_m, "m", "correlative score: std of the point-to-map distance", Above(0));
+  b.Bind("loop_table_levels", c.loop_table.levels, "-", "branch-and-bound levels", AtLeast(1));
   b.Bind("loop_min_score", c.loop_min_score, "-", "correlative score a closure needs");
   b.Bind("loop_runner_up_radius_m", c.loop_runner_up_radius_m, "m", "ambiguity: runner-up match farther than this from the best");
   b.Bind("loop_max_runner_up_ratio", c.loop_max_runner_up_ratio, "-", "ambiguity: runner-up score / best score must stay below this");
   b.Bind("loop_max_match_shift_m", c.loop_max_match_shift_m, "m", "ICP may move the correlative match at most this far");
-  b.Bind("solve_every_keyframes", c.solve_every_keyframes, "-", "re-solve pending small closures after this many keyframes");
+  b.Bind("solve_every_keyframes", c.solve_every_keyframes, "-", "re-solve pending small closures after this many keyframes", AtLeast(1));
   b.Bind("solve_innovation_m", c.solve_innovation_m, "m", "a closure this far off the estimate is solved at once");
   b.Bind("loop_max_rms_m", c.loop.max_rms_m, "m", "loop ICP fitness: max RMS residual");
   b.Bind("loop_min_inlier_ratio", c.loop.min_inlier_ratio, "-", "loop ICP overlap: min inliers / points");
-  b.Bind("loop_kernel", c.loop_kernel, {"none", "huber", "cauchy", "dcs"}, "robust kernel on loop edges");
-  b.Bind("loop_kernel_scale", c.loop_kernel_scale, "-", "Huber/Cauchy scale (whitened) or DCS Phi");
+  b.Bind("loop_kernel", c.loop_kernel, RobustKernelNames(), "robust kernel on loop edges");
+  b.Bind("loop_kernel_scale", c.loop_kernel_scale, "-", "Huber/Cauchy scale (whitened) or DCS Phi", Above(0));
   b.Bind("loop_accept_weight", c.loop_accept_weight, "-", "loop edges weighted below this count as rejected");
   b.Bind("solve_max_iterations", c.solve_max_iterations, "-", "Ceres iterations per solve");
   b.Bind("source_voxel_m", c.source_voxel_m, "m", "subsample scans (0 = off)");
@@ -63,24 +60,10 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
 }
 
 IcpPoseSlam::IcpPoseSlam(const IcpPoseSlamConfig& config)
-    : config_(config),
-      icp_(ResolveIcpConfig(config.icp, config.icp_choices, "icp-poseslam")),
-      loop_icp_(ResolveIcpConfig(config.loop_icp, config.loop_icp_choices, "icp-poseslam")) {
-  const auto positive = [](double v, const char* name) {
-    if (!(v > 0)) throw InputError(std::string("--set algo.icp-poseslam.") + name, 0, "must be > 0", "give a positive value");
-  };
-  positive(config.keyframe_distance_m, "keyframe_distance_m");
-  positive(config.keyframe_angle_deg, "keyframe_angle_deg");
-  positive(config.info_cap_sigma_xy_m, "info_cap_sigma_xy_m");
-  positive(config.info_cap_sigma_theta_deg, "info_cap_sigma_theta_deg");
-  positive(config.fixed_sigma_xy_m, "fixed_sigma_xy_m");
-  positive(config.fixed_sigma_theta_deg, "fixed_sigma_theta_deg");
-  positive(config.loop_kernel_scale, "loop_kernel_scale");
-  if (config.local_map_keyframes < 0)
-    throw InputError("--set algo.icp-poseslam.local_map_keyframes", 0, "must be >= 0", "give 0 or more keyframes");
+    : config_(config), icp_(config.icp), loop_icp_(config.loop_icp) {
   local_map_icp_ = icp_;
   local_map_icp_.correspondence = IcpCorrespondence::kKdTree;
-  solve_options_.loop_kernel = ParseKernel(config.loop_kernel);
+  solve_options_.loop_kernel = config.loop_kernel;
   solve_options_.kernel_scale = config.loop_kernel_scale;
   solve_options_.max_iterations = config.solve_max_iterations;
 }
@@ -171,7 +154,7 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
       e.information = (odometry_cov_ + Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix()).inverse();
       estimate_.diagnostics["odometry_edges"].emplace_back(scan.t_s, 1.0);
     } else {
-      e.information = config_.edge_information == "fixed"
+      e.information = config_.edge_information == EdgeInformationSource::kFixed
                           ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
                           : IcpEdgeInformation(*edge_icp, odometry_cov_, Caps());
     }
@@ -268,7 +251,7 @@ void IcpPoseSlam::CloseLoops(double t_s) {
     e.from = c.keyframe;
     e.to = k;
     e.T_from_to = r.T_target_source;
-    e.information = config_.edge_information == "fixed"
+    e.information = config_.edge_information == EdgeInformationSource::kFixed
                         ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
                         : IcpEdgeInformation(r, 1e6 * Eigen::Matrix3d::Identity(), Caps());
     e.loop_closure = true;

@@ -24,12 +24,14 @@
 
 namespace slambox {
 
+/// Information of an ICP edge: the capped ICP Hessian, or fixed sigmas.
+enum class EdgeInformationSource { kHessian, kFixed };
+
 struct IcpPoseSlamConfig {
-  IcpConfig icp;                        ///< front end: scan to keyframe
-  IcpChoices icp_choices{.robust_kernel = "geman-mcclure"};  ///< redescending weights: movers do not drag ICP
+  /// Front end, scan to keyframe; redescending weights: movers do not drag ICP.
+  IcpConfig icp{.correspondence = IcpCorrespondence::kProjection, .robust_kernel = IcpRobustKernel::kGemanMcClure};
   IcpConfig loop_icp{.correspondence = IcpCorrespondence::kKdTree, .max_iterations = 50,
                      .max_correspondence_m = 0.5};
-  IcpChoices loop_icp_choices{.correspondence = "kdtree"};
   bool adaptive_gate = true;            ///< KISS-ICP adaptive gate for the front end
   /// Front-end target: the latest keyframe and this many before it, merged in its frame
   /// (scan-to-submap, kd-tree); 0 = the latest keyframe's scan alone (projection).
@@ -37,7 +39,7 @@ struct IcpPoseSlamConfig {
   double local_map_voxel_m = 0.05;      ///< [m] voxel size of the merged local map
   double keyframe_distance_m = 0.5;     ///< [m] new keyframe after this much translation
   double keyframe_angle_deg = 20.0;     ///< [deg] ... or this much rotation
-  std::string edge_information = "hessian";  ///< hessian (capped) | fixed
+  EdgeInformationSource edge_information = EdgeInformationSource::kHessian;
   double info_cap_sigma_xy_m = 0.005;    ///< [m] Hessian information cap, translation
   double info_cap_sigma_theta_deg = 0.1; ///< [deg] Hessian information cap, heading
   double fixed_sigma_xy_m = 0.02;        ///< [m] fixed information, translation
@@ -51,7 +53,7 @@ struct IcpPoseSlamConfig {
   double loop_max_match_shift_m = 0.1;   ///< [m] ICP may move the correlative match at most this far
   int solve_every_keyframes = 20;        ///< re-solve pending small closures after this many keyframes
   double solve_innovation_m = 0.05;      ///< [m] a closure this far off the estimate is solved at once
-  std::string loop_kernel = "dcs";       ///< none | huber | cauchy | dcs, on loop edges only
+  RobustKernel loop_kernel = RobustKernel::kDcs;  ///< on loop edges only
   double loop_kernel_scale = 100.0;        ///< Huber/Cauchy scale on the whitened residual; DCS Phi
   double loop_accept_weight = 0.5;       ///< a loop edge the back-end weights below this counts as rejected
   int solve_max_iterations = 50;

@@ -159,11 +159,11 @@ TEST(FastSlamModule, TrajectoryChoicesShareTimesAndCarryCovariances) {
   const Stream s = MakeStream(4, true, 1);
   FastSlamConfig c;
   c.particles = 20;
-  c.trajectory = "best";
+  c.trajectory = FastSlamTrajectory::kBest;
   const Estimate best = RunModule<FastSlam>(s, c, true);
-  c.trajectory = "mean";
+  c.trajectory = FastSlamTrajectory::kMean;
   const Estimate mean = RunModule<FastSlam>(s, c, true);
-  c.trajectory = "path_mean";
+  c.trajectory = FastSlamTrajectory::kPathMean;
   const Estimate path_mean = RunModule<FastSlam>(s, c, true);
   ASSERT_EQ(best.trajectory.size(), mean.trajectory.size());
   ASSERT_EQ(best.trajectory.size(), path_mean.trajectory.size());
@@ -179,8 +179,8 @@ TEST(FastSlamModule, TrajectoryChoicesShareTimesAndCarryCovariances) {
 TEST(FastSlamModule, BadConfigurationIsAnInputError) {
   EXPECT_THROW(FastSlam(FastSlamConfig{.particles = 0}, false), InputError);
   EXPECT_THROW(FastSlam(FastSlamConfig{.neff_threshold = 1.5}, true), InputError);
-  EXPECT_THROW(FastSlam(FastSlamConfig{.trajectory = "median"}, true), InputError);
   const ModuleInfo info = FastSlam2Module();
+  EXPECT_THROW(info.create({{"trajectory", "median"}}), InputError);
   EXPECT_THROW(info.create({{"particles", "-3"}}), InputError);
   EXPECT_THROW(info.create({{"no_such_field", "1"}}), InputError);
   for (const ParamInfo& p : info.params()) {
