@@ -32,7 +32,7 @@ TEST(LandmarkGraph, NoiseFreeGraphIsAFixedPointAndPerturbedGuessConverges) {
   LandmarkGraph g;
   g.observation_covariance = Eigen::Vector2d(1e-4, 1e-6).asDiagonal();
   for (size_t i = 0; i < truth.size(); ++i) {
-    g.poses.push_back(truth[i].vector() + (i > 0 ? Eigen::Vector3d(0.2, -0.1, 0.05) : Eigen::Vector3d::Zero()));
+    g.poses.push_back(SE2::FromVector(truth[i].vector() + (i > 0 ? Eigen::Vector3d(0.2, -0.1, 0.05) : Eigen::Vector3d::Zero())));
     if (i > 0) g.odometry.push_back({static_cast<int>(i) - 1, Between(truth[i - 1], truth[i]), 1e-4 * Eigen::Matrix3d::Identity()});
     for (int j = 0; j < 2; ++j) g.observations.push_back({static_cast<int>(i), j, PredictObservation(truth[i], marks[j]).z});
   }
@@ -40,7 +40,7 @@ TEST(LandmarkGraph, NoiseFreeGraphIsAFixedPointAndPerturbedGuessConverges) {
   const LandmarkGraphSolution s = SolveLandmarkGraph(g, {});
   ASSERT_TRUE(s.usable);
   EXPECT_LT(s.chi2_final, 1e-8);
-  for (size_t i = 0; i < truth.size(); ++i) EXPECT_LT((g.poses[i] - truth[i].vector()).norm(), 1e-6);
+  for (size_t i = 0; i < truth.size(); ++i) EXPECT_LT((g.poses[i].vector() - truth[i].vector()).norm(), 1e-6);
   for (int j = 0; j < 2; ++j) EXPECT_LT((g.landmarks[j] - marks[j]).norm(), 1e-6);
   ASSERT_TRUE(s.covariance_ok);
   EXPECT_EQ(s.pose_covariances[0], Eigen::Matrix3d::Zero());
