@@ -1,6 +1,7 @@
 #include "slam/ekf_slam.hpp"
 
 #include "core/chi_square.hpp"
+#include "core/error.hpp"
 #include "core/odometry_model.hpp"
 #include "slam/landmark_merge.hpp"
 #include "slam/range_bearing.hpp"
@@ -26,7 +27,15 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance");
 }
 
-EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {}
+EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {
+  // ekf-slam's own settings, and graphslam's front end (same field names).
+  auto fail = [](const std::string& field, const std::string& problem, const std::string& fix) {
+    throw InputError("--set algo.ekf-slam." + field + " (or algo.graphslam." + field + ")", 0, problem, fix);
+  };
+  if (!(config.merge_probability >= 0 && config.merge_probability < 1))
+    fail("merge_probability", "must lie in [0, 1)", "e.g. 0.99, or 0 to never merge");
+  if (!(config.tentative_max_age_s > 0)) fail("tentative_max_age_s", "must be positive", "e.g. 2");
+}
 
 void EkfSlam::Start(const StreamHeader& header) {
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "core/chi_square.hpp"
+#include "core/error.hpp"
 #include "slam/ekf_slam.hpp"
 
 namespace slambox {
@@ -191,6 +192,13 @@ TEST(EkfSlamExistence, ClutterAloneIsNeverConfirmed) {
   }
   EXPECT_EQ(confirmed_ever, 0);
   EXPECT_TRUE(s.ekf.Finish().landmarks.empty());
+}
+
+TEST(EkfSlamExistence, BadSettingsAreInputErrors) {
+  EXPECT_THROW(EkfSlam({.merge_probability = 1.0}), InputError);
+  EXPECT_THROW(EkfSlam({.merge_probability = -0.1}), InputError);
+  EXPECT_THROW(EkfSlam({.tentative_max_age_s = 0.0}), InputError);
+  EXPECT_NO_THROW(EkfSlam({.merge_probability = 0.0}));
 }
 
 }  // namespace
