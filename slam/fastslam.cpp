@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <tuple>
 
@@ -227,6 +228,24 @@ std::vector<PoseEstimate> FastSlam::PathMean() const {
   return out;
 }
 
+double FastSlam::CoalescedUntil() const {
+  // Walk every final particle's path back in step (newest first) to the first node they
+  // all share: their most recent common ancestor. -1 if there is none.
+  std::vector<const PathNode*> at;
+  for (const FastSlamParticle& p : particles_) at.push_back(p.path.get());
+  while (!at.empty()) {
+    double newest = -std::numeric_limits<double>::infinity();
+    for (const PathNode* n : at) {
+      if (n == nullptr) return -1.0;
+      newest = std::max(newest, n->t_s);
+    }
+    if (std::all_of(at.begin(), at.end(), [&](const PathNode* n) { return n == at.front(); })) return newest;
+    for (const PathNode*& n : at)
+      if (n->t_s == newest) n = n->parent.get();
+  }
+  return -1.0;
+}
+
 Estimate FastSlam::Finish() {
   if (particles_.empty()) return std::move(estimate_);
   const FastSlamParticle& best = particles_[BestParticle()];
@@ -235,11 +254,18 @@ Estimate FastSlam::Finish() {
   } else if (config_.trajectory == FastSlamTrajectory::kPathMean) {
     estimate_.trajectory = PathMean();
   } else {  // the best particle's ancestry, with the cloud's covariance at the same times
+    // Where every final particle descends from one pose node the set holds one path: the
+    // filtered cloud's covariance at that time says nothing about the error of this
+    // (smoothed) path, so those poses get no covariance (no confident NEES from a
+    // depleted set; Bailey et al. 2006).
+    const double coalesced_until_s = CoalescedUntil();
+    estimate_.diagnostics["coalesced_until_s"].emplace_back(best.path ? best.path->t_s : 0.0, coalesced_until_s);
     size_t k = 0;
     for (const PathNode* n : PathPoses(best.path)) {
       while (k < cloud_.size() && cloud_[k].t_s < n->t_s) ++k;
       PoseEstimate e{n->t_s, n->pose, Eigen::Matrix3d::Zero(), false};
-      if (k < cloud_.size() && cloud_[k].t_s == n->t_s) e.covariance = cloud_[k].covariance, e.has_covariance = true;
+      if (k < cloud_.size() && cloud_[k].t_s == n->t_s && n->t_s > coalesced_until_s)
+        e.covariance = cloud_[k].covariance, e.has_covariance = true;
       estimate_.trajectory.push_back(e);
     }
   }

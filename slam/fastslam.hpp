@@ -8,7 +8,9 @@
 // end (its ancestry's poses at every odometry event; ties on the weight are broken by
 // the lineage's total likelihood), with, at each time, the covariance of the weighted
 // particle cloud (plus the mean of the 2.0 proposal priors) around the weighted mean,
-// for NEES. `trajectory = mean` outputs the filtered weighted mean pose instead,
+// for NEES, only after the time where all final particles' paths coalesce (before it the
+// set holds one path and no covariance is reported; diagnostic coalesced_until_s).
+// `trajectory = mean` outputs the filtered weighted mean pose instead,
 // `path_mean` the weighted mean of the final particles' ancestral paths. Landmarks are
 // the best particle's map. Diagnostics per landmark scan: neff (before resampling),
 // distinct_ancestors (initial particles with living descendants), resampled (0/1),
@@ -67,6 +69,8 @@ class FastSlam : public SlamModule {
   void RecordCloud(double t_s);
   void Diagnose(double t_s, const std::string& name, double value) { estimate_.diagnostics[name].emplace_back(t_s, value); }
   int BestParticle() const;
+  /// Time of the newest pose node that every particle's path shares (-1: none).
+  double CoalescedUntil() const;
   std::vector<PoseEstimate> PathMean() const;
 
   FastSlamConfig config_;
