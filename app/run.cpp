@@ -93,15 +93,15 @@ json RunAndWrite(const RunRequest& request) {
       try {
         WriteTum((dir / (name + ".tum")).string(), Poses(*run.estimate));
         WriteJson(dir / "estimates" / (name + ".json"), ToJson(*run.estimate));
-        WriteJson(dir / "series" / (name + ".json"), run.series);
+        WriteJson(dir / "series" / (name + ".json"), ToJson(run.series));
       } catch (const std::exception& e) {  // as a failing module: the others go on
-        run.metrics = {{"status", "failed"}, {"reason", e.what()}};
+        run.metrics = UnscoredMetrics(RunStatus::kFailed, e.what());
       }
     }
-    const json& metrics = run.metrics;
+    const Metrics& metrics = run.metrics;
     modules[i].reset();
-    doc["algorithms"][name] = metrics;
-    if (progress) std::cerr << " " << metrics.value("status", "?") << "\n";
+    doc["algorithms"][name] = ToJson(metrics);
+    if (progress) std::cerr << " " << RunStatusName(metrics.status) << "\n";
   }
   doc["peak_rss_mb"] = PeakRssMb();
   WriteJson(dir / "metrics.json", doc);

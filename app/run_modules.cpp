@@ -95,7 +95,7 @@ ModuleRun ReplayAndScore(SlamModule& module, const Stream& stream, const EvalOpt
     run.series = std::move(evaluation.series);
     run.estimate = std::move(estimate);
   } catch (const std::exception& e) {  // a failing module never takes the others down
-    run.metrics = {{"status", "failed"}, {"reason", e.what()}};
+    run.metrics = UnscoredMetrics(RunStatus::kFailed, e.what());
   }
   return run;
 }

@@ -4,7 +4,6 @@
 // options a stream implies, and one module's replay and score. Writes no file.
 #include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,13 +45,13 @@ EvalOptions RunEvalOptions(const Stream& stream, const std::string& relations_pa
 
 /// One module's outcome: metrics.json's entry; the estimate and error series unless it failed.
 struct ModuleRun {
-  nlohmann::json metrics;
+  Metrics metrics;
   std::optional<Estimate> estimate;
-  nlohmann::json series;
+  ErrorSeries series;
 };
 
-/// Replays `stream` to `module` and scores it. A module that throws gives
-/// {"status": "failed", "reason": what()} and no estimate; it never takes others down.
+/// Replays `stream` to `module` and scores it. A module that throws gives status failed
+/// with what() as the reason and no estimate; it never takes others down.
 ModuleRun ReplayAndScore(SlamModule& module, const Stream& stream, const EvalOptions& options);
 
 }  // namespace slambox

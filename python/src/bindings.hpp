@@ -32,7 +32,7 @@ struct StreamHandle {
 };
 
 /// A metrics.json entry whose keys read as attributes (`m.ate_rmse_m`; None where null).
-struct Metrics {
+struct MetricsView {
   py::dict values;
 };
 

@@ -108,20 +108,20 @@ What a module yields: Estimate(poses, covariances=None, landmarks=None).
       }, "(L, 2, 2) landmark covariances, NaN where none")
       .def("__len__", [](const Estimate& e) { return e.trajectory.size(); });
 
-  py::class_<Metrics>(m, "Metrics", "One algorithm's metrics.json entry: attributes named as its keys, None where null.")
-      .def("__getattr__", [](const Metrics& mt, const std::string& key) -> py::object {
+  py::class_<MetricsView>(m, "Metrics", "One algorithm's metrics.json entry: attributes named as its keys, None where null.")
+      .def("__getattr__", [](const MetricsView& mt, const std::string& key) -> py::object {
         if (mt.values.contains(key)) return mt.values[py::str(key)];
         throw py::attribute_error("no metric '" + key + "' (see Metrics.keys())");
       })
-      .def("__getitem__", [](const Metrics& mt, const std::string& key) -> py::object {
+      .def("__getitem__", [](const MetricsView& mt, const std::string& key) -> py::object {
         if (mt.values.contains(key)) return mt.values[py::str(key)];
         throw py::key_error(key);
       })
-      .def("__contains__", [](const Metrics& mt, const std::string& key) { return mt.values.contains(key); })
-      .def("keys", [](const Metrics& mt) { return py::list(mt.values.attr("keys")()); })
-      .def("to_dict", [](const Metrics& mt) { return py::dict(mt.values); }, "A copy as a plain dict (as in metrics.json).")
-      .def("__dir__", [](const Metrics& mt) { return py::list(mt.values.attr("keys")()); })
-      .def("__repr__", [](const Metrics& mt) { return "<slambox.Metrics " + py::repr(mt.values).cast<std::string>() + ">"; });
+      .def("__contains__", [](const MetricsView& mt, const std::string& key) { return mt.values.contains(key); })
+      .def("keys", [](const MetricsView& mt) { return py::list(mt.values.attr("keys")()); })
+      .def("to_dict", [](const MetricsView& mt) { return py::dict(mt.values); }, "A copy as a plain dict (as in metrics.json).")
+      .def("__dir__", [](const MetricsView& mt) { return py::list(mt.values.attr("keys")()); })
+      .def("__repr__", [](const MetricsView& mt) { return "<slambox.Metrics " + py::repr(mt.values).cast<std::string>() + ">"; });
 }
 
 }  // namespace slambox::python

@@ -54,7 +54,7 @@ EvalOptions EvalOptionsFor(const std::string& align, double delta, const std::st
   return o;
 }
 
-Metrics Evaluate(const py::object& gt, const py::object& est, const std::string& align, double delta,
+MetricsView Evaluate(const py::object& gt, const py::object& est, const std::string& align, double delta,
                  const std::string& delta_unit, bool all_pairs, bool pairs_from_reference, double t_max_diff_s,
                  bool interpolate) {
   const EvalOptions options =
@@ -62,15 +62,15 @@ Metrics Evaluate(const py::object& gt, const py::object& est, const std::string&
   GroundTruth truth;
   for (const auto& p : ReadEstimate(gt, "gt").trajectory) truth.trajectory.push_back({p.t_s, p.pose});
   const Estimate estimate = ReadEstimate(est, "est");
-  nlohmann::json metrics;
+  Metrics metrics;
   {
     py::gil_scoped_release release;
     metrics = EvaluateEstimate(truth, estimate, options).metrics;
   }
-  if (metrics["matched_poses"].get<std::size_t>() == 0)
+  if (metrics.matched_poses.value_or(0) == 0)
     throw InputError("est", 0, "no timestamp matches the ground truth within " + std::to_string(t_max_diff_s) + " s",
                      "check that both use the same clock, or raise t_max_diff_s / use interpolate=True");
-  return Metrics{ToPython(metrics).cast<py::dict>()};
+  return MetricsView{ToPython(ToJson(metrics)).cast<py::dict>()};
 }
 
 Scenario LoadScenarioFrom(const std::string& name_or_path, const py::dict& overrides) {

@@ -12,7 +12,7 @@ namespace {
 struct AlgorithmResult {
   std::string name;
   std::string status;
-  Metrics metrics;
+  MetricsView metrics;
   std::optional<Estimate> estimate;
 };
 
@@ -78,8 +78,8 @@ Results Run(const StreamHandle& handle, const py::list& algorithms, const py::di
     }
     auto r = std::make_shared<AlgorithmResult>();
     r->name = e.name;
-    r->status = run.metrics.value("status", "?");
-    r->metrics.values = ToPython(run.metrics).cast<py::dict>();
+    r->status = RunStatusName(run.metrics.status);
+    r->metrics.values = ToPython(ToJson(run.metrics)).cast<py::dict>();
     r->estimate = std::move(run.estimate);
     results.algorithms.push_back(std::move(r));
   }
