@@ -2,7 +2,9 @@
 // loop scenario's walls rasterized into the grid, 4096 rays from poses along its path,
 // 30 m range. Counters: rays_per_s, and scan_realtime_factor = scans of 360 beams per
 // second / 10 Hz (the LIDAR of loop): the ray casting alone, not the whole simulation.
-// The segment index on the same rays for reference. Run: ./build/bench/grid_ray_cast_bench
+// The segment index on the same rays for reference, and the whole simulation of loop
+// with its world given as that 2000 x 2000 grid (world.occupancy_map: its cells' boundary
+// loops become the walls). Run: ./build/bench/grid_ray_cast_bench
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -11,6 +13,7 @@
 #include "sim/grid_ray_cast.hpp"
 #include "sim/ray_caster.hpp"
 #include "sim/scenario.hpp"
+#include "sim/simulate.hpp"
 
 namespace slambox {
 namespace {
@@ -74,7 +77,23 @@ void BM_SegmentIndexRays(benchmark::State& state) {
   Counters(state);
 }
 
+void BM_SimulateLoopFromGrid2000(benchmark::State& state) {
+  Scenario s = LoadScenario("loop");
+  s.occupancy_grid = LoopGrid(MakeWorld(s));
+  s.walls.clear();
+  double simulated_s = 0.0;
+  std::size_t walls = 0;
+  for (auto _ : state) {
+    const Stream stream = Simulate(s, 0);
+    simulated_s += stream.header.duration_s;
+    walls = stream.header.world.wall_segments.size();
+  }
+  state.counters["realtime_factor"] = benchmark::Counter(simulated_s, benchmark::Counter::kIsRate);
+  state.counters["wall_segments"] = static_cast<double>(walls);
+}
+
 BENCHMARK(BM_GridRays2000);
+BENCHMARK(BM_SimulateLoopFromGrid2000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_SegmentIndexRays);
 
 }  // namespace
