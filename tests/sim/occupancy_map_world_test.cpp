@@ -133,5 +133,16 @@ TEST_F(OccupancyMapWorld, PosesInOccupiedCellsAreErrors) {
   EXPECT_NE(e.find("room_scenario.yaml:4"), std::string::npos) << e;
 }
 
+TEST(OccupancyMapExample, CommittedOfficeMapScenarioDrivesWithoutTouchingAWall) {
+  const auto s = LoadScenario(std::string(SLAMBOX_SOURCE_DIR) + "/scenarios/maps/office_from_map.yaml");
+  EXPECT_EQ(s.occupancy_grid.width, 320);
+  EXPECT_EQ(s.occupancy_grid.height, 200);
+  SimulationReport report;
+  const Stream stream = Simulate(s, 0, {}, &report);
+  EXPECT_NEAR(report.distance_m, 2 * 60.0, 0.5) << "two laps of the 60 m corridor loop";
+  EXPECT_EQ(report.wall_contacts, 0);
+  EXPECT_TRUE(report.path_completed);
+}
+
 }  // namespace
 }  // namespace slambox
