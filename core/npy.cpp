@@ -27,13 +27,22 @@ std::string Npy(const std::vector<double>& values, const std::string& shape) {
 
 }  // namespace
 
+// Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "(" + std::to_string(n) + ",)".
 std::string NpyFloat64(const std::vector<double>& values) {
-  return Npy(values, "(" + std::to_string(values.size()) + ",)");
+  std::string shape("(");
+  shape += std::to_string(values.size());
+  shape += ",)";
+  return Npy(values, shape);
 }
 
 std::string NpyFloat64Matrix(const std::vector<double>& values, int rows, int cols) {
   assert(values.size() == static_cast<std::size_t>(rows) * cols);
-  return Npy(values, "(" + std::to_string(rows) + ", " + std::to_string(cols) + ")");
+  std::string shape("(");
+  shape += std::to_string(rows);
+  shape += ", ";
+  shape += std::to_string(cols);
+  shape += ")";
+  return Npy(values, shape);
 }
 
 }  // namespace slambox

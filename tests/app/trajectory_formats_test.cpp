@@ -66,7 +66,9 @@ TEST_F(TrajectoryFormats, SaveResultsWritesEvosArchive) {
       EXPECT_EQ(json::parse(e.bytes)["ref_name"], "groundtruth");
       EXPECT_EQ(json::parse(e.bytes)["est_name"], "odometry");
     }
-    if (e.name == "stats.json") EXPECT_DOUBLE_EQ(json::parse(e.bytes)["rmse"].get<double>(), m["ate_rmse_m"].get<double>());
+    if (e.name == "stats.json") {
+      EXPECT_DOUBLE_EQ(json::parse(e.bytes)["rmse"].get<double>(), m["ate_rmse_m"].get<double>());
+    }
   }
   EXPECT_EQ(names, (std::vector<std::string>{"info.json", "stats.json", "error_array.npz", "timestamps.npz",
                                              "seconds_from_start.npz", "distances_from_start.npz"}));

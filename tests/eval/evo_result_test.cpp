@@ -22,7 +22,7 @@ Evaluation Sample(AlignMode align) {
   for (int i = 0; i < 40; ++i) {
     const double t = 0.1 * i;
     gt.trajectory.push_back({t, SE2(0.5 * i, 0.1 * i, 0.01 * i)});
-    est.trajectory.push_back({t, SE2(0.5 * i + 0.02 * std::sin(i), 0.1 * i + 0.01 * i, 0.01 * i), {}, false});
+    est.trajectory.push_back({t, SE2(0.5 * i + 0.02 * std::sin(i), 0.1 * i + 0.01 * i, 0.01 * i), Eigen::Matrix3d::Zero(), false});
   }
   EvalOptions o;
   o.align = align;

@@ -88,7 +88,9 @@ TEST_F(OccupancyMapWorld, LidarSeesExactlyTheOccupiedCells) {
       const Eigen::Vector2d dir = T.rotation() * Eigen::Vector2d(std::cos(a), std::sin(a));
       const double truth = caster.CastBruteForce(T.translation(), dir, scan->range_max_m);
       ASSERT_EQ(scan->valid[i] != 0, std::isfinite(truth)) << "scan " << scans << " beam " << i;
-      if (scan->valid[i]) EXPECT_NEAR(scan->ranges_m[i], truth, 1e-9) << "scan " << scans << " beam " << i;
+      if (scan->valid[i]) {
+        EXPECT_NEAR(scan->ranges_m[i], truth, 1e-9) << "scan " << scans << " beam " << i;
+      }
       ++checked;
     }
     if (++scans == 40) break;
