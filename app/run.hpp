@@ -46,6 +46,9 @@ struct RunRequest {
   bool skip_unavailable = false;  ///< skip named modules whose sensors the stream lacks
   /// Trajectory files besides the TUM ones (always written, DESIGN.md).
   std::vector<TrajectoryFormat> formats = {TrajectoryFormat::kTum};
+  /// Kümmerle relations file (the log's clock, mapped by the stream's time origin): when
+  /// given, relation_* score every module on it.
+  std::string relations_path;
 };
 
 /// Runs and writes the run folder; returns the metrics.json document.
