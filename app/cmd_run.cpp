@@ -3,6 +3,7 @@
 
 #include "app/commands.hpp"
 #include "app/run.hpp"
+#include "core/error.hpp"
 
 namespace slambox {
 
@@ -17,14 +18,23 @@ void AddRunCommand(CLI::App& app) {
       ->each([request](const std::string&) { request->seed_given = true; });
   cmd->add_option("--set", request->sets, "override KEY=VALUE (scenario keys, or algo.NAME.FIELD)");
   cmd->add_option("-o,--output", request->output_dir, "output folder")->required();
+  auto formats = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--format", *formats,
+                  "trajectory files besides TUM: kitti (<algo>.kitti + <algo>.groundtruth.kitti, matched poses)")
+      ->delimiter(',');
   cmd->add_flag("--no-figures", [request](std::int64_t) { request->figures = false; }, "skip figures");
   cmd->add_flag("-q,--quiet", request->quiet, "no progress on stderr");
   cmd->add_option("--relations", request->relations_path,
                   "Kümmerle relations file of the log (t_i t_j dx dy dz roll pitch dtheta): relation_* on it");
   cmd->add_flag("--skip-unavailable", request->skip_unavailable,
                 "skip listed modules whose sensors the stream lacks (instead of an error)");
-  cmd->callback([request] {
+  cmd->callback([request, formats] {
     if (request->algorithms.empty()) request->algorithms = {"odometry"};
+    for (const auto& f : *formats) {
+      if (f == "tum") continue;
+      if (f != "kitti") throw InputError("--format " + f, 0, "unknown trajectory format", "use tum or kitti");
+      request->formats.push_back(TrajectoryFormat::kKitti);
+    }
     const auto doc = RunAndWrite(*request);
     int bad = 0;
     for (const auto& [name, m] : doc["algorithms"].items()) {

@@ -14,10 +14,13 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/json_io.hpp"
+#include "core/ros_map.hpp"
 #include "core/stream_io.hpp"
 #include "core/tum.hpp"
 #include "core/version.hpp"
+#include "eval/association.hpp"
 #include "eval/evaluate.hpp"
+#include "eval/grid_map.hpp"
 #include "render/figures_run.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulate.hpp"
@@ -98,6 +101,23 @@ std::vector<StampedPose> Poses(const Estimate& e) {
 
 void WriteJson(const fs::path& path, const json& j) { WriteFileAtomic(path.string(), j.dump(1) + "\n"); }
 
+// KITTI files have no timestamps: write the matched pairs, line by line.
+void WriteKittiPair(const fs::path& dir, const std::string& name, const std::vector<StampedPose>& groundtruth,
+                    const std::vector<StampedPose>& estimate) {
+  if (groundtruth.empty()) {
+    WriteKittiPoses((dir / (name + ".kitti")).string(), estimate);
+    return;
+  }
+  const Association a = Associate(groundtruth, estimate);
+  std::vector<StampedPose> gt, est;
+  for (size_t k = 0; k < a.t_s.size(); ++k) {
+    gt.push_back({a.t_s[k], a.groundtruth[k]});
+    est.push_back({a.t_s[k], a.estimate[k]});
+  }
+  WriteKittiPoses((dir / (name + ".kitti")).string(), est);
+  WriteKittiPoses((dir / (name + ".groundtruth.kitti")).string(), gt);
+}
+
 }  // namespace
 
 json RunAndWrite(const RunRequest& request) {
@@ -153,6 +173,8 @@ json RunAndWrite(const RunRequest& request) {
                                  {"seed", stream.header.seed},
                                  {"duration_s", stream.header.duration_s},
                                  {"world", ToJson(stream.header.world)}});
+  if (const OccupancyGrid truth = TrueOccupancyGrid(world); truth.width > 0)
+    WriteRosMap((dir / "maps" / "groundtruth.yaml").string(), truth);
 
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
@@ -163,7 +185,11 @@ json RunAndWrite(const RunRequest& request) {
       const Evaluation evaluation = EvaluateEstimate(gt, estimate, options);
       metrics = evaluation.metrics;
       WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
+      if (std::count(request.formats.begin(), request.formats.end(), TrajectoryFormat::kKitti))
+        WriteKittiPair(dir, name, stream.groundtruth, Poses(estimate));
       WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));
+      if (estimate.grid && estimate.grid->width > 0 && estimate.grid->height > 0)
+        WriteRosMap((dir / "maps" / (name + ".yaml")).string(), *estimate.grid);
       WriteJson(dir / "series" / (name + ".json"), ToJson(evaluation.series));
     } catch (const std::exception& e) {  // a failing module never takes the others down
       metrics = UnscoredMetrics(RunStatus::kFailed, e.what());

@@ -2,7 +2,12 @@
 // `slambox run`: load or simulate one stream, replay it to each requested module, score
 // each estimate and write the run folder:
 //   DIR/metrics.json, DIR/groundtruth.tum, DIR/<algo>.tum, DIR/world.json,
-//   DIR/estimates/<algo>.json, DIR/series/<algo>.json, DIR/figures/
+//   DIR/estimates/<algo>.json, DIR/series/<algo>.json, DIR/figures/,
+//   DIR/maps/<algo>.yaml + .pgm (ROS map_server format) for every module that builds a
+//   grid, and DIR/maps/groundtruth.yaml + .pgm (the walls rasterized at 0.05 m);
+//   with `kitti` among the formats also DIR/<algo>.kitti and DIR/<algo>.groundtruth.kitti:
+//   the estimate's poses matched to ground truth (as eval matches them) and the matching
+//   true poses, line by line (`evo_ape kitti`); all estimate poses without ground truth.
 // A module that throws or diverges is recorded with its status; the others go on.
 #include <cstdint>
 #include <map>
@@ -10,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/kitti_poses.hpp"
 #include "core/params.hpp"
 #include "core/stream.hpp"
 
@@ -38,6 +44,8 @@ struct RunRequest {
   bool figures = true;
   bool quiet = false;  ///< no progress lines on stderr
   bool skip_unavailable = false;  ///< skip named modules whose sensors the stream lacks
+  /// Trajectory files besides the TUM ones (always written, DESIGN.md).
+  std::vector<TrajectoryFormat> formats = {TrajectoryFormat::kTum};
   /// Kümmerle relations file (the log's clock, mapped by the stream's time origin): when
   /// given, relation_* score every module on it.
   std::string relations_path;

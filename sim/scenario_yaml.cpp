@@ -12,7 +12,7 @@ namespace slambox::scenario_detail {
 const std::vector<std::string>* ScenarioKeysAt(const std::string& path) {
   static const std::map<std::string, std::vector<std::string>> kKeys = {
       {"", {"version", "name", "description", "duration_s", "world", "robot", "sensors"}},
-      {"world", {"walls", "landmarks", "movers"}},
+      {"world", {"occupancy_map", "walls", "landmarks", "movers"}},
       {"world.walls.#", {"polyline", "polygon", "box", "circle"}},
       {"world.walls.#.box", {"center", "size", "angle_deg"}},
       {"world.walls.#.circle", {"center", "radius_m"}},
