@@ -13,6 +13,7 @@
 #include "app/registry.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/finite_estimate.hpp"
 #include "core/json_io.hpp"
 #include "core/stream_io.hpp"
 #include "core/tum.hpp"
@@ -100,6 +101,22 @@ void WriteJson(const fs::path& path, const json& j) { WriteFileAtomic(path.strin
 
 }  // namespace
 
+json RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream, const EvalOptions& options,
+                       const std::string& dir) {
+  const GroundTruth gt{stream.groundtruth, stream.header.world};
+  try {
+    const Estimate estimate = Replay(module, stream);
+    const Evaluation evaluation = EvaluateEstimate(gt, estimate, options);
+    const Estimate written = FiniteEstimate(estimate);  // no NaN in a file (diverged says where)
+    WriteTum((fs::path(dir) / (name + ".tum")).string(), Poses(written));
+    WriteJson(fs::path(dir) / "estimates" / (name + ".json"), ToJson(written));
+    WriteJson(fs::path(dir) / "series" / (name + ".json"), evaluation.series);
+    return evaluation.metrics;
+  } catch (const std::exception& e) {  // a failing module never takes the others down
+    return {{"status", "failed"}, {"reason", e.what()}};
+  }
+}
+
 json RunAndWrite(const RunRequest& request) {
   const Overrides overrides = SplitOverrides(request.sets);
   const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
@@ -121,7 +138,6 @@ json RunAndWrite(const RunRequest& request) {
   const bool progress = !request.quiet && isatty(STDERR_FILENO);
   const fs::path dir(request.output_dir);
   fs::create_directories(dir);
-  const GroundTruth gt{stream.groundtruth, stream.header.world};
   EvalOptions options;
   // With unknown ids a module's landmark ids are its own indices: match by assignment.
   const auto& lm = stream.header.sensors.landmarks;
@@ -142,17 +158,7 @@ json RunAndWrite(const RunRequest& request) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
-    json metrics;
-    try {
-      const Estimate estimate = Replay(*modules[i], stream);
-      const Evaluation evaluation = EvaluateEstimate(gt, estimate, options);
-      metrics = evaluation.metrics;
-      WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
-      WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));
-      WriteJson(dir / "series" / (name + ".json"), evaluation.series);
-    } catch (const std::exception& e) {  // a failing module never takes the others down
-      metrics = {{"status", "failed"}, {"reason", e.what()}};
-    }
+    const json metrics = RunModuleAndWrite(*modules[i], name, stream, options, dir.string());
     modules[i].reset();
     doc["algorithms"][name] = metrics;
     if (progress) std::cerr << " " << metrics.value("status", "?") << "\n";

@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "core/params.hpp"
+#include "core/slam_module.hpp"
 #include "core/stream.hpp"
+#include "eval/evaluate.hpp"
 
 namespace slambox {
 
@@ -39,6 +41,12 @@ struct RunRequest {
   bool quiet = false;  ///< no progress lines on stderr
   bool skip_unavailable = false;  ///< skip named modules whose sensors the stream lacks
 };
+
+/// Replays `stream` to `module`, scores it and writes DIR/NAME.tum, DIR/estimates/NAME.json
+/// (both of FiniteEstimate: no NaN in a file) and DIR/series/NAME.json; returns its
+/// metrics ("status": "ok", "diverged" or "failed" with "reason"). Never throws.
+nlohmann::json RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream,
+                                 const EvalOptions& options, const std::string& dir);
 
 /// Runs and writes the run folder; returns the metrics.json document.
 nlohmann::json RunAndWrite(const RunRequest& request);

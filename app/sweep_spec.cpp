@@ -3,9 +3,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "core/version.hpp"
 
 namespace slambox {
@@ -36,11 +40,26 @@ std::string ScalarText(const YAML::Node& n, const std::string& file, const std::
 }  // namespace
 
 SweepSpec LoadSweepSpec(const std::string& path) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec || !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, 0, "cannot open the sweep file", "check the path");
+  if (bytes > limits::kMaxYamlFileBytes)
+    throw InputError(path, 0,
+                     "the sweep file has " + std::to_string(bytes) + " bytes, over the limit of " +
+                         std::to_string(limits::kMaxYamlFileBytes),
+                     "give a sweep YAML file (scenarios, algorithms, seeds, grid)");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw InputError(path, 0, "cannot read the sweep file", "check its permissions");
+  return ParseSweepSpec(text.str(), path);
+}
+
+SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path, 0, "cannot open the sweep file", "check the path");
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(path, e.mark.line + 1, "not valid YAML: " + e.msg, "fix the YAML syntax");
   }
@@ -98,6 +117,13 @@ SweepSpec LoadSweepSpec(const std::string& path) {
     }
     if (!(spec.timeout_s > 0)) throw InputError(path, Line(t), "timeout_s must be a positive number", "write timeout_s: 600");
   }
+  double runs = static_cast<double>(spec.scenarios.size()) * static_cast<double>(spec.seeds.size());
+  for (const auto& [key, values] : spec.grid) runs *= static_cast<double>(values.size());
+  if (runs > static_cast<double>(limits::kMaxSweepRuns))
+    throw InputError(path, 0,
+                     "the sweep asks for " + std::to_string(runs) + " runs (scenarios x grid points x seeds), over the limit of " +
+                         std::to_string(limits::kMaxSweepRuns),
+                     "split it into several sweeps, or use fewer grid values or seeds");
   return spec;
 }
 

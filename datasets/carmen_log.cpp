@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "datasets/compressed_file.hpp"
 
 namespace slambox {
@@ -103,6 +104,7 @@ ParsedLog ParseLines(const std::string& text, const std::string& name, const Car
     const std::string_view line(text.data() + pos, end - pos);
     pos = end + 1;
     ++line_number;
+    limits::CheckLineLength(name, line_number, line.size());
     if (line.empty() || line[0] == '#') continue;
     const Tokens t(line, name, line_number);
     if (t.size() == 0) continue;

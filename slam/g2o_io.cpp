@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "slam/pose_graph_cost.hpp"
 
 namespace slambox {
@@ -120,6 +121,7 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
     ++line;
     size_t end = text.find('\n', pos);
     if (end == std::string::npos) end = text.size();
+    limits::CheckLineLength(name, line, end - pos);
     SplitWords(std::string_view(text).substr(pos, end - pos), &tokens);
     pos = end + 1;
     if (tokens.empty() || tokens[0][0] == '#') continue;
