@@ -5,9 +5,9 @@
 # Usage: slurm_array_test.sh SLAMBOX_BINARY SOURCE_DIR. Exit 77 = skipped (CTest SKIP).
 # Every wait and every Slurm/munge client call is bounded (`timeout`): when a daemon cannot
 # start (no cgroup file system, host name that does not resolve, munge "Unauthorized
-# credential"), the test skips within STARTUP_S seconds with the daemon's own error line.
+# credential"), the test skips within 30 s with the daemon's own error line.
 set -euo pipefail
-STARTUP_S=${SLAMBOX_SLURM_STARTUP_S:-30}   # daemons up and node idle, or skip
+STARTUP_S=${SLAMBOX_SLURM_STARTUP_S:-24}   # daemons up and node idle, or skip (+ one client call: < 30 s)
 CLIENT_S=5                                  # one sinfo/squeue/sbatch/scancel call
 JOB_S=120                                   # the array job itself (4 tiny runs)
 slambox=$1
