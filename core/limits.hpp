@@ -15,8 +15,9 @@ namespace slambox::limits {
 /// One line of a text format (CARMEN, Victoria Park, TUM, g2o/TORO/iSAM): 1 MiB.
 /// The widest public CARMEN laser line (1081 beams) is ~15 kB.
 inline constexpr std::size_t kMaxTextLineBytes = std::size_t{1} << 20;
-/// A scenario or sweep YAML file: 4 MiB (the built-ins are < 8 kB).
-inline constexpr std::size_t kMaxYamlFileBytes = std::size_t{4} << 20;
+/// A scenario or sweep YAML file: 1 MiB (the built-ins are < 8 kB; yaml-cpp parses
+/// about 1 MB per CPU second).
+inline constexpr std::size_t kMaxYamlFileBytes = std::size_t{1} << 20;
 /// Decompressed size of a .gz/.bz2 log: 4 GiB (the Intel log is 20 MB).
 inline constexpr std::uint64_t kMaxDecompressedBytes = std::uint64_t{4} << 30;
 
@@ -24,14 +25,18 @@ inline constexpr std::uint64_t kMaxDecompressedBytes = std::uint64_t{4} << 30;
 inline constexpr int kMaxLidarBeams = 100000;
 /// duration_s of a scenario: one simulated day [s].
 inline constexpr double kMaxDurationS = 86400.0;
-/// world.landmarks, world.walls, world.movers, robot.path: items in one list.
-inline constexpr std::size_t kMaxListItems = 100000;
+/// world.landmarks, world.walls, world.movers, robot.path, a polyline: items in one list.
+inline constexpr std::size_t kMaxListItems = 20000;
+/// Points [x, y] in one scenario, YAML aliases counted at each use (an alias can repeat
+/// a long list many times from a few bytes).
+inline constexpr std::size_t kMaxScenarioPoints = 100000;
 /// sensors.landmarks.clutter_per_scan (Poisson mean of false detections per scan).
 inline constexpr double kMaxClutterPerScan = 10000.0;
 /// Every coordinate of a scenario (walls, posts, waypoints, movers) within +-100 km [m].
 inline constexpr double kMaxCoordinateM = 1e5;
-/// Geometry check work: (robot legs + mover legs + 2 poses) x (walls + posts) <= 2e7 (~1 s).
-inline constexpr std::uint64_t kMaxGeometryPairs = 20'000'000;
+/// Geometry check work: (robot legs + mover legs + 3) x (wall edges + posts) <= 1e7
+/// (~0.3 CPU s).
+inline constexpr std::uint64_t kMaxGeometryPairs = 10'000'000;
 /// Estimated memory of one simulated stream (sim/scenario_limits.hpp): 4 GiB.
 inline constexpr std::uint64_t kMaxStreamBytes = std::uint64_t{4} << 30;
 

@@ -173,8 +173,8 @@ std::string ReadString(const YamlSource& src, const YAML::Node& value, const std
 Eigen::Vector2d ReadPoint(const YamlSource& src, const YAML::Node& value, const std::string& key) {
   if (!value.IsSequence() || value.size() != 2)
     Fail(src, value, key + " must be a point [x, y] in metres", "write it as [x, y], e.g. [1.5, 2]");
-  if (++src.points_read > 10 * limits::kMaxListItems)
-    Fail(src, value, "more than " + std::to_string(10 * limits::kMaxListItems) + " points in the scenario (at " + key + ")",
+  if (++src.points_read > limits::kMaxScenarioPoints)
+    Fail(src, value, "more than " + std::to_string(limits::kMaxScenarioPoints) + " points in the scenario (at " + key + ")",
          "draw the world with fewer points (YAML aliases count each time they are used)");
   const Range coordinate = Between(-limits::kMaxCoordinateM, limits::kMaxCoordinateM);
   return {ReadDouble(src, value[0], key + "[0]", coordinate), ReadDouble(src, value[1], key + "[1]", coordinate)};

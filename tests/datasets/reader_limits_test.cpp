@@ -2,7 +2,7 @@
 // refused at its line number (no attempt to tokenize a binary file as text).
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <ctime>
 #include <string>
 
 #include "core/error.hpp"
@@ -16,7 +16,7 @@ namespace {
 
 template <class F>
 void ExpectLineRefused(F&& parse, const std::string& file, int line) {
-  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t start = std::clock();  // CPU time: the test machine may be shared
   try {
     parse();
     ADD_FAILURE() << file << ": accepted";
@@ -25,7 +25,7 @@ void ExpectLineRefused(F&& parse, const std::string& file, int line) {
     EXPECT_EQ(e.line(), line);
     EXPECT_NE(std::string(e.what()).find("over the limit of 1048576 bytes per line"), std::string::npos) << e.what();
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_LT(static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC, 1.0);
 }
 
 TEST(ReaderLimits, OverlongLinesRefusedAtTheirLine) {

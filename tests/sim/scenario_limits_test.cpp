@@ -1,8 +1,8 @@
 // Limits instead of hangs (core/limits.hpp): every size a scenario can ask for is refused
-// with file, line and fix before anything is allocated or simulated, in well under 1 s.
+// with file, line and fix before anything is allocated or simulated, in well under 1 s of CPU time.
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <ctime>
 #include <sstream>
 #include <string>
 
@@ -21,7 +21,7 @@ const std::string kHead = "version: 1\nrobot:\n  path: [[1, 1], [3, 1]]\n";
 /// `problem` in the message and a fix.
 void ExpectRefused(const std::string& yaml, int line, const std::string& problem,
                    const std::vector<std::string>& overrides = {}, const std::string& file = "limits.yaml") {
-  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t start = std::clock();  // CPU time: the test machine may be shared
   try {
     LoadScenarioText(yaml, "limits.yaml", overrides);
     ADD_FAILURE() << "accepted:\n" << yaml;
@@ -31,7 +31,7 @@ void ExpectRefused(const std::string& yaml, int line, const std::string& problem
     EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("fix:"), std::string::npos) << e.what();
   }
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
   EXPECT_LT(s, 1.0) << "the limit took " << s << " s to answer";
 }
 
@@ -66,22 +66,22 @@ TEST(ScenarioLimits, LongListRefused) {
   yaml << "version: 1\nrobot:\n  path: [";
   for (std::size_t i = 0; i <= limits::kMaxListItems; ++i) yaml << (i ? ",[1,1]" : "[1,1]");
   yaml << "]\n";
-  ExpectRefused(yaml.str(), 3, "robot.path has 100001 items, over the limit of 100000");
+  ExpectRefused(yaml.str(), 3, "robot.path has 20001 items, over the limit of 20000");
 }
 
 TEST(ScenarioLimits, AliasedPointsCountEachUse) {
-  // One 1000-point polyline used 1000 times through an alias: 1e6 points from 20 kB.
+  // One 10000-point polyline used 10000 times through an alias: 1e8 points from 200 kB.
   std::ostringstream yaml;
   yaml << "version: 1\nworld:\n  walls:\n    - polyline: &p [";
-  for (int i = 0; i < 1000; ++i) yaml << (i ? "," : "") << "[" << 50 + i << ", 50]";
+  for (int i = 0; i < 10000; ++i) yaml << (i ? "," : "") << "[" << 50 + i << ", 50]";
   yaml << "]\n";
-  for (int i = 0; i < 1000; ++i) yaml << "    - polyline: *p\n";
+  for (int i = 0; i < 10000; ++i) yaml << "    - polyline: *p\n";
   yaml << "robot:\n  path: [[1, 1]]\n";
-  ExpectRefused(yaml.str(), 4, "more than 1000000 points in the scenario");
+  ExpectRefused(yaml.str(), 4, "more than 100000 points in the scenario");
 }
 
 TEST(ScenarioLimits, GeometryWorkRefused) {
-  // 5000 waypoints x 5000 posts = 2.5e7 leg-obstacle checks > 2e7.
+  // 5000 waypoints x 5000 posts = 2.5e7 leg-obstacle checks > 1e7.
   std::ostringstream yaml;
   yaml << "version: 1\nworld:\n  landmarks: [";
   for (int i = 0; i < 5000; ++i) yaml << (i ? "," : "") << "{pos: [" << 100 + i << ", 100]}";
@@ -94,15 +94,15 @@ TEST(ScenarioLimits, GeometryWorkRefused) {
 TEST(ScenarioLimits, HugeFileRefusedUnread) {
   testing::TempDir dir;
   const std::string path = dir.Write("big.yaml", kHead + "# " + std::string(limits::kMaxYamlFileBytes, 'x') + "\n");
-  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t start = std::clock();  // CPU time: the test machine may be shared
   try {
     LoadScenario(path);
     ADD_FAILURE() << "accepted a file over the limit";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), path);
-    EXPECT_NE(std::string(e.what()).find("over the limit of 4194304"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("over the limit of 1048576"), std::string::npos) << e.what();
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_LT(static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC, 1.0);
 }
 
 TEST(ScenarioLimits, EstimateIsTheDocumentedFormula) {

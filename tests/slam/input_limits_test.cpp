@@ -1,8 +1,8 @@
 // Limits instead of hangs (core/limits.hpp) in slam/: particle counts, grid cells and
-// pose-graph line lengths are refused with a clear message, in well under 1 s.
+// pose-graph line lengths are refused with a clear message, in well under 1 s of CPU time.
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <ctime>
 #include <string>
 
 #include "core/error.hpp"
@@ -17,14 +17,14 @@ namespace {
 
 template <class F>
 std::string ErrorWithin1s(F&& f) {
-  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t start = std::clock();  // CPU time: the test machine may be shared
   std::string what;
   try {
     f();
   } catch (const InputError& e) {
     what = e.what();
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_LT(static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC, 1.0);
   return what;
 }
 
@@ -51,10 +51,8 @@ TEST(InputLimits, HugeDistanceGridRefused) {
 TEST(InputLimits, OverlongGraphLineRefusedAtItsLine) {
   const std::string text = "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0 " + std::string(limits::kMaxTextLineBytes, '7') + "\n";
   try {
-    const auto start = std::chrono::steady_clock::now();
     ParsePoseGraph(text, "long.g2o");
     ADD_FAILURE() << "accepted";
-    (void)start;
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "long.g2o");
     EXPECT_EQ(e.line(), 2);
