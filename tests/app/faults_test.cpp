@@ -194,6 +194,8 @@ TEST(Faults, SecondSweepOnARunningSweepsFolderRefuses) {
   const fs::path sweep = dir / "sweep.yaml";
   std::ofstream(sweep) << "scenarios: [landmarks]\nalgorithms: [odometry]\nseeds: 2\nset: {duration_s: 8}\n";
   const std::string out = (dir / "out").string();
+  fs::create_directories(out);
+  fs::copy_file(sweep, fs::path(out) / "sweep.yaml");  // as a running sweep has written it
   {
     const SweepLock held(out, ".lock");  // as a running sweep holds it
     for (const std::string& args : {"sweep " + sweep.string() + " --resume --no-figures -o " + out,
