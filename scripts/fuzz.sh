@@ -35,7 +35,8 @@ for t in "${targets[@]}"; do
     -print_final_stats=1 -artifact_prefix="build-fuzz/crashes/$name/" "${dict[@]}" \
     "build-fuzz/corpus/$name" "tests/fuzz/corpus/$name" >"$log" 2>&1; then
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
-    cov=$(grep -oE '^#[0-9]+ +DONE +cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 | sed -E 's/.*cov: ([0-9]+) ft: ([0-9]+)/cov \1, ft \2/')
+    cov=$(grep -oE '^#[0-9]+[[:space:]]+DONE[[:space:]]+cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 |
+      sed -E 's/.*cov: ([0-9]+) ft: ([0-9]+)/cov \1, ft \2/' || true)
     corpus=$(find "build-fuzz/corpus/$name" -type f | wc -l)
     echo "fuzz: $t ok: $execs executions, ${cov:-cov ?}, $corpus corpus entries kept"
   else
