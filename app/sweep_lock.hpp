@@ -4,7 +4,8 @@
 // shard, so the shards of a Slurm array run side by side) for as long as it runs. A
 // second one on the same folder refuses at once, naming the holder's pid, instead of
 // running every run again beside the first. The kernel drops the lock when the sweep
-// process ends, also on SIGKILL: no stale lock to clean. (A record lock, not flock(2):
+// process ends, also on SIGKILL: no stale lock to clean. The whole-folder lock (a sweep
+// without --shard, or --merge) also refuses while any shard of the folder is running. (A record lock, not flock(2):
 // it is not inherited by the forked run workers, so it never outlives the sweep.)
 #include <string>
 
