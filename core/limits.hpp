@@ -37,6 +37,12 @@ inline constexpr double kMaxCoordinateM = 1e5;
 /// Geometry check work: (robot legs + mover legs + 3) x (wall edges + posts) <= 1e7
 /// (~0.3 CPU s).
 inline constexpr std::uint64_t kMaxGeometryPairs = 10'000'000;
+/// Angles in files (poses, increments): |angle| <= 1e4 rad. Files hold wrapped angles;
+/// beyond ~1e15 rad NormalizeAngle has no precision left (found by fuzz_pose_graph).
+inline constexpr double kMaxAngleRad = 1e4;
+/// Timestamps in logs: |t| <= 1e10 s (Unix time is 1.7e9 s), so t / dt_s stays exact.
+inline constexpr double kMaxTimestampS = 1e10;
+
 /// Estimated memory of one simulated stream (sim/scenario_limits.hpp): 4 GiB.
 inline constexpr std::uint64_t kMaxStreamBytes = std::uint64_t{4} << 30;
 

@@ -65,7 +65,9 @@ class Tokens {
   /// The ipc timestamp: third token from the end (ts host logger_ts).
   double Timestamp() const {
     if (tokens_.size() < 4) Fail("the line ends before its timestamp (ts host logger_ts)");
-    return Number(tokens_.size() - 3, "the timestamp");
+    const double ts = Number(tokens_.size() - 3, "the timestamp");
+    if (std::abs(ts) > limits::kMaxTimestampS) Fail("the timestamp " + tokens_[tokens_.size() - 3] + " is out of range (|t| <= 1e10 s)");
+    return ts;
   }
   [[noreturn]] void Fail(const std::string& problem) const {
     throw InputError(file_, line_, tokens_.empty() ? problem : tokens_[0] + ": " + problem,
@@ -79,7 +81,13 @@ class Tokens {
 };
 
 SE2 PoseAt(const Tokens& t, size_t i, const char* what) {
-  return SE2(t.Number(i, what), t.Number(i + 1, what), t.Number(i + 2, what));
+  const double x = t.Number(i, what), y = t.Number(i + 1, what), theta = t.Number(i + 2, what);
+  // Bounded, so that increments between poses stay finite (core/limits.hpp).
+  if (std::abs(x) > limits::kMaxCoordinateM || std::abs(y) > limits::kMaxCoordinateM ||
+      std::abs(theta) > limits::kMaxAngleRad)
+    t.Fail(std::string(what) + " (" + t.word(i) + ", " + t.word(i + 1) + ", " + t.word(i + 2) +
+           ") is out of range (|x|, |y| <= 1e5 m, |theta| <= 1e4 rad)");
+  return SE2(x, y, theta);
 }
 
 // n beams over the field of view: odd n puts the ends at +-fov/2, even n steps fov/n.

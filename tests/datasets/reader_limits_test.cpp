@@ -41,5 +41,21 @@ TEST(ReaderLimits, OverlongLinesRefusedAtTheirLine) {
   }
 }
 
+TEST(ReaderLimits, CarmenPosesAndTimesAreBounded) {
+  // Found by fuzz_carmen: a pose coordinate of 1e308 made the odometry increment -inf,
+  // and the converted stream could not be read back (tests/fuzz/corpus/carmen/finding-huge-pose.log).
+  const std::string scan = "FLASER 3 1 2 3 0 0 0 0 0 0 1.1 host 0\n";
+  for (const std::string& bad : {"ODOM 1e308 0 0 0 0 0 1.2 host 0\n", "ODOM 0 0 -2e4 0 0 0 1.2 host 0\n",
+                                 "ODOM 0 0 0 0 0 0 1e300 host 0\n"}) {
+    try {
+      ParseCarmenLog("ODOM 0 0 0 0 0 0 1.0 host 0\n" + scan + bad, "bad.log");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), 3) << e.what();
+      EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace slambox

@@ -60,5 +60,20 @@ TEST(InputLimits, OverlongGraphLineRefusedAtItsLine) {
   }
 }
 
+TEST(InputLimits, GraphAnglesAndPositionsAreBounded) {
+  // Found by fuzz_pose_graph: theta = 2.1e16 rad wrapped to -4 (no precision left), so the
+  // written graph read back differently (tests/fuzz/corpus/pose_graph/finding-huge-angle.g2o).
+  for (const std::string& bad : {"VERTEX_SE2 5 2 1 21474836471464489\n", "VERTEX_SE2 5 1e6 1 0\n",
+                                 "EDGE_SE2 0 5 1 0 1e5 1 0 0 1 0 1\n"}) {
+    try {
+      ParsePoseGraph("VERTEX_SE2 0 0 0 0\n" + bad, "bad.g2o");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), 2) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is out of range for"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace slambox
