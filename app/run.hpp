@@ -40,6 +40,9 @@ struct RunRequest {
   bool figures = true;
   bool quiet = false;  ///< no progress lines on stderr
   bool skip_unavailable = false;  ///< skip named modules whose sensors the stream lacks
+  /// Kümmerle relations file (the log's clock, mapped by the stream's time origin): when
+  /// given, relation_* score every module on it.
+  std::string relations_path;
 };
 
 /// Replays `stream` to `module`, scores it and writes DIR/NAME.tum, DIR/estimates/NAME.json

@@ -11,8 +11,12 @@ PACKAGES=(
   libpng-dev libfreetype-dev fonts-dejavu-core
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
+  mrpt-common  # MRPT's own config_files/ (the peers' real-log settings come from them, slam/mrpt/README.md)
   clang-14 libfuzzer-14-dev  # scripts/fuzz.sh: libFuzzer harnesses of every reader (tests/fuzz/)
 )
+# MRPT's own applications (icp-slam, rbpf-slam, graphslam-engine), only for the cross-check
+# in slam/mrpt/README.md: `--with-mrpt-apps`.
+[ "${1:-}" = "--with-mrpt-apps" ] && PACKAGES+=(mrpt-apps)
 [ "${1:-}" = "--with-slurm" ] && PACKAGES+=(slurmctld slurmd slurm-client munge)
 missing=()
 for p in "${PACKAGES[@]}"; do
