@@ -145,6 +145,9 @@ ParsedLog ParseLines(const std::string& text, const std::string& name, const Car
       s.line = line_number;
       s.angle_min_rad = t.Number(2, "start_angle");
       s.angle_increment_rad = t.Number(4, "the angular resolution");
+      // Bounded, so that the header's field of view (n x resolution) stays finite (found by fuzz_carmen).
+      if (std::abs(s.angle_min_rad) > limits::kMaxAngleRad || std::abs(s.angle_increment_rad) > limits::kMaxAngleRad)
+        t.Fail("start_angle " + t.word(2) + " or angular resolution " + t.word(4) + " is out of range (|angle| <= 1e4 rad)");
       s.range_max_m = t.Number(5, "max_range");
       for (int i = 0; i < n; ++i) s.ranges_m.push_back(t.Number(9 + i, "a range reading"));
       s.laser_pose = PoseAt(t, 10 + n + m, "the laser pose");

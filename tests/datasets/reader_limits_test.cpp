@@ -44,7 +44,16 @@ TEST(ReaderLimits, OverlongLinesRefusedAtTheirLine) {
 TEST(ReaderLimits, CarmenPosesAndTimesAreBounded) {
   // Found by fuzz_carmen: a pose coordinate of 1e308 made the odometry increment -inf,
   // and the converted stream could not be read back (tests/fuzz/corpus/carmen/finding-huge-pose.log).
+  // And a ROBOTLASER1 angular resolution of 1e306 gave an infinite field of view in the
+  // header (finding-huge-resolution.log).
   const std::string scan = "FLASER 3 1 2 3 0 0 0 0 0 0 1.1 host 0\n";
+  try {
+    ParseCarmenLog("ROBOTLASER1 0 -1.5 3.1 1e306 81.9 0.01 0 3 1 2 3 0 0 0 0 0 0 0 0 0 0 0 0 1.3 host 0\n", "res.log");
+    ADD_FAILURE() << "accepted a resolution of 1e306";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 1) << e.what();
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+  }
   for (const std::string& bad : {"ODOM 1e308 0 0 0 0 0 1.2 host 0\n", "ODOM 0 0 -2e4 0 0 0 1.2 host 0\n",
                                  "ODOM 0 0 0 0 0 0 1e300 host 0\n"}) {
     try {
