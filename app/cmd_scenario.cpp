@@ -12,6 +12,7 @@
 #include "app/registry.hpp"
 #include "core/stream_io.hpp"
 #include "sim/scenario.hpp"
+#include "sim/scenario_limits.hpp"
 
 namespace slambox {
 namespace {
@@ -89,6 +90,7 @@ void AddScenarioCommands(CLI::App& app) {
                                *overrides)
             : LoadScenario(*target, *overrides);
     std::cout << ScenarioToYaml(scenario);
+    std::cout << "# " << DescribeStreamSize(EstimateStreamSize(scenario)) << "\n";  // a comment: still valid YAML
   });
 
   CLI::App* algorithms = app.add_subcommand(

@@ -14,6 +14,7 @@
 #include "app/registry.hpp"
 #include "app/run.hpp"
 #include "app/sweep_exec.hpp"
+#include "app/sweep_lock.hpp"
 #include "app/sweep_slurm.hpp"
 #include "app/sweep_summary.hpp"
 #include "core/atomic_file.hpp"
@@ -105,6 +106,7 @@ void Finish(const SweepArgs& a, const std::string& dir, const SweepSpec& spec, c
 void Sweep(const SweepArgs& a) {
   if (!a.merge_dir.empty()) {  // rebuild the summary from the shards' run results
     const SweepSpec spec = LoadSweepSpec(a.merge_dir + "/sweep.yaml");
+    const SweepLock lock(a.merge_dir, ".lock");
     Finish(a, a.merge_dir, spec, ExpandSweep(spec));
     return;
   }
@@ -130,13 +132,17 @@ void Sweep(const SweepArgs& a) {
   }
   Validate(spec, all);
   std::vector<SweepRun> mine = all;
+  std::string lock_name = ".lock";
   if (!a.shard.empty()) {
     std::size_t index = 0, count = 0;
     ParseShard(a.shard, index, count);
+    lock_name = ".lock.shard-" + std::to_string(index) + "-of-" + std::to_string(count);
     mine.clear();
     for (const auto& r : all)
       if (r.index % count == index) mine.push_back(r);
   }
+  // Before looking at what is done: a running sweep's half-done folder is not "done".
+  const SweepLock lock(a.out_dir, lock_name);
   if (!a.resume)
     for (const auto& r : mine)
       if (RunComplete(a.out_dir, r))

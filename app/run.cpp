@@ -13,6 +13,7 @@
 #include "app/registry.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/finite_estimate.hpp"
 #include "core/json_io.hpp"
 #include "core/ros_map.hpp"
 #include "core/stream_io.hpp"
@@ -120,6 +121,27 @@ void WriteKittiPair(const fs::path& dir, const std::string& name, const std::vec
 
 }  // namespace
 
+Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream, const EvalOptions& options,
+                          const std::string& dir, const std::vector<TrajectoryFormat>& formats) {
+  const GroundTruth gt{stream.groundtruth, stream.header.world};
+  const fs::path d(dir);
+  try {
+    const Estimate estimate = Replay(module, stream);
+    const Evaluation evaluation = EvaluateEstimate(gt, estimate, options);
+    const Estimate written = FiniteEstimate(estimate);  // no NaN in a file (diverged says where)
+    WriteTum((d / (name + ".tum")).string(), Poses(written));
+    if (std::count(formats.begin(), formats.end(), TrajectoryFormat::kKitti))
+      WriteKittiPair(d, name, stream.groundtruth, Poses(written));
+    WriteJson(d / "estimates" / (name + ".json"), ToJson(written));
+    if (written.grid && written.grid->width > 0 && written.grid->height > 0)
+      WriteRosMap((d / "maps" / (name + ".yaml")).string(), *written.grid);
+    WriteJson(d / "series" / (name + ".json"), ToJson(evaluation.series));
+    return evaluation.metrics;
+  } catch (const std::exception& e) {  // a failing module never takes the others down
+    return UnscoredMetrics(RunStatus::kFailed, e.what());
+  }
+}
+
 json RunAndWrite(const RunRequest& request) {
   const Overrides overrides = SplitOverrides(request.sets);
   const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
@@ -140,7 +162,6 @@ json RunAndWrite(const RunRequest& request) {
 
   const bool progress = !request.quiet && isatty(STDERR_FILENO);
   const fs::path dir(request.output_dir);
-  const GroundTruth gt{stream.groundtruth, stream.header.world};
   EvalOptions options;
   // With unknown ids a module's landmark ids are its own indices: match by assignment.
   const auto& lm = stream.header.sensors.landmarks;
@@ -179,21 +200,7 @@ json RunAndWrite(const RunRequest& request) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
-    Metrics metrics;
-    try {
-      const Estimate estimate = Replay(*modules[i], stream);
-      const Evaluation evaluation = EvaluateEstimate(gt, estimate, options);
-      metrics = evaluation.metrics;
-      WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
-      if (std::count(request.formats.begin(), request.formats.end(), TrajectoryFormat::kKitti))
-        WriteKittiPair(dir, name, stream.groundtruth, Poses(estimate));
-      WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));
-      if (estimate.grid && estimate.grid->width > 0 && estimate.grid->height > 0)
-        WriteRosMap((dir / "maps" / (name + ".yaml")).string(), *estimate.grid);
-      WriteJson(dir / "series" / (name + ".json"), ToJson(evaluation.series));
-    } catch (const std::exception& e) {  // a failing module never takes the others down
-      metrics = UnscoredMetrics(RunStatus::kFailed, e.what());
-    }
+    const Metrics metrics = RunModuleAndWrite(*modules[i], name, stream, options, dir.string(), request.formats);
     modules[i].reset();
     doc["algorithms"][name] = ToJson(metrics);
     if (progress) std::cerr << " " << RunStatusName(metrics.status) << "\n";

@@ -17,7 +17,9 @@
 
 #include "core/kitti_poses.hpp"
 #include "core/params.hpp"
+#include "core/slam_module.hpp"
 #include "core/stream.hpp"
+#include "eval/evaluate.hpp"
 
 namespace slambox {
 
@@ -50,6 +52,14 @@ struct RunRequest {
   /// given, relation_* score every module on it.
   std::string relations_path;
 };
+
+/// Replays `stream` to `module`, scores it and writes DIR/NAME.tum, DIR/estimates/NAME.json
+/// (both of FiniteEstimate: no NaN in a file), DIR/series/NAME.json, DIR/maps/NAME.yaml for a
+/// grid and the `formats`' files; returns its metrics (status ok, diverged or failed with a
+/// reason). Never throws.
+Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream,
+                          const EvalOptions& options, const std::string& dir,
+                          const std::vector<TrajectoryFormat>& formats = {TrajectoryFormat::kTum});
 
 /// Runs and writes the run folder; returns the metrics.json document.
 nlohmann::json RunAndWrite(const RunRequest& request);

@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "core/stream_io.hpp"
 #include "core/version.hpp"
 
@@ -46,11 +49,26 @@ std::vector<std::string> SweptAndSetKeys(const SweepSpec& spec) {
 }  // namespace
 
 SweepSpec LoadSweepSpec(const std::string& path) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec || !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, 0, "cannot open the sweep file", "check the path");
+  if (bytes > limits::kMaxYamlFileBytes)
+    throw InputError(path, 0,
+                     "the sweep file has " + std::to_string(bytes) + " bytes, over the limit of " +
+                         std::to_string(limits::kMaxYamlFileBytes),
+                     "give a sweep YAML file (scenarios, algorithms, seeds, grid)");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw InputError(path, 0, "cannot read the sweep file", "check its permissions");
+  return ParseSweepSpec(text.str(), path);
+}
+
+SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path, 0, "cannot open the sweep file", "check the path");
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(path, e.mark.line + 1, "not valid YAML: " + e.msg, "fix the YAML syntax");
   }
@@ -131,6 +149,13 @@ SweepSpec LoadSweepSpec(const std::string& path) {
         throw InputError(path, 1, "'" + key + "' is a scenario key and '" + scenario + "' is a stream file",
                          "set only algo.NAME.FIELD keys in a sweep over streams, or list scenarios instead");
   }
+  double runs = static_cast<double>(spec.scenarios.size()) * static_cast<double>(spec.seeds.size());
+  for (const auto& [key, values] : spec.grid) runs *= static_cast<double>(values.size());
+  if (runs > static_cast<double>(limits::kMaxSweepRuns))
+    throw InputError(path, 0,
+                     "the sweep asks for " + std::to_string(runs) + " runs (scenarios x grid points x seeds), over the limit of " +
+                         std::to_string(limits::kMaxSweepRuns),
+                     "split it into several sweeps, or use fewer grid values or seeds");
   return spec;
 }
 

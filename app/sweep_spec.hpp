@@ -43,6 +43,8 @@ struct SweepRun {
 
 /// Parses and validates; throws InputError with file, line and fix.
 SweepSpec LoadSweepSpec(const std::string& path);
+/// LoadSweepSpec of the file's text; `path` is used in error messages.
+SweepSpec ParseSweepSpec(const std::string& text, const std::string& path);
 /// Scenario-major, then grid points (last key varies fastest), then seeds.
 std::vector<SweepRun> ExpandSweep(const SweepSpec& spec);
 /// Stable run id (FNV-1a 64 of the canonical run description and slambox version).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -57,7 +58,13 @@ struct Reader {
     for (int i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(in[pos++])) << (8 * i);
     return v;
   }
-  double F64() { return std::bit_cast<double>(U64()); }
+  /// Every number inside a record is finite (a NaN or inf would poison every module).
+  double F64() {
+    const size_t at = pos;
+    const double v = std::bit_cast<double>(U64());
+    if (!std::isfinite(v)) Corrupt("non-finite number (" + std::to_string(v) + ") in a " + record + " record", at);
+    return v;
+  }
   SE2 Pose() {
     SE2 p;
     p.x = F64();
@@ -65,6 +72,7 @@ struct Reader {
     p.theta = F64();
     return p;
   }
+  std::string record = "?";  ///< the record being read, for errors
   [[noreturn]] void Corrupt(const std::string& what, size_t at) const {
     throw InputError(name, 0, "corrupt stream file: " + what + " at byte offset " + std::to_string(at), kRecreate);
   }
@@ -182,6 +190,13 @@ Stream ParseStream(const std::string& bytes, const std::string& name) {
     const size_t at = r.pos;
     const std::uint8_t tag = r.U8();
     if (tag == kEnd) break;
+    r.record = tag == kOdometry      ? "odometry"
+               : tag == kLaser       ? "laser"
+               : tag == kLandmarks   ? "landmarks"
+               : tag == kGyro        ? "gyro"
+               : tag == kGroundTruth ? "groundtruth"
+                                     : "unknown";
+    if (r.record == "unknown") r.Corrupt("unknown record tag " + std::to_string(tag), at);
     const double t = r.F64();
     if (tag == kOdometry) {
       s.events.push_back(OdometryEvent{t, r.Pose()});

@@ -13,6 +13,7 @@ PACKAGES=(
   python3-numpy  # tests read the evo result archive with numpy (skipped when absent)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
   mrpt-common  # MRPT's own config_files/ (the peers' real-log settings come from them, slam/mrpt/README.md)
+  clang-14 libfuzzer-14-dev  # scripts/fuzz.sh: libFuzzer harnesses of every reader (tests/fuzz/)
 )
 # MRPT's own applications (icp-slam, rbpf-slam, graphslam-engine), only for the cross-check
 # in slam/mrpt/README.md: `--with-mrpt-apps`.

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "core/ros_map.hpp"
 
 #include "sim/scenario_yaml.hpp"
@@ -26,6 +27,7 @@ YAML::Node Sequence(const YamlSource& src, const YAML::Node& map, const std::str
   const YAML::Node v = map[key];
   if (!v.IsDefined() || v.IsNull()) return YAML::Node(YAML::NodeType::Sequence);
   if (!v.IsSequence()) Fail(src, v, key + " must be a list", "write each item on a line starting with '- '");
+  CheckListSize(src, v, key);
   return v;
 }
 
@@ -51,8 +53,9 @@ void ParseOccupancyMap(const YamlSource& src, const YAML::Node& node, Scenario& 
 PoseSpec ParsePose(const YamlSource& src, const YAML::Node& node, const std::string& path) {
   CheckMap(src, node, path);
   PoseSpec p;
-  p.x = GetDouble(src, node, path, "x", p.x, {});
-  p.y = GetDouble(src, node, path, "y", p.y, {});
+  const Range coordinate = Between(-limits::kMaxCoordinateM, limits::kMaxCoordinateM);
+  p.x = GetDouble(src, node, path, "x", p.x, coordinate);
+  p.y = GetDouble(src, node, path, "y", p.y, coordinate);
   p.theta_deg = GetDouble(src, node, path, "theta_deg", p.theta_deg, {});
   return p;
 }
@@ -181,7 +184,7 @@ Scenario ParseScenario(const YAML::Node& root, const YamlSource& src) {
     Fail(src, version, "unsupported scenario version " + std::to_string(s.version), "this slambox reads version: 1");
   if (root["name"].IsDefined()) s.name = ReadString(src, root["name"], "name");
   if (root["description"].IsDefined()) s.description = ReadString(src, root["description"], "description");
-  s.duration_s = GetDouble(src, root, "", "duration_s", s.duration_s, AtLeast(0.0));
+  s.duration_s = GetDouble(src, root, "", "duration_s", s.duration_s, Between(0.0, limits::kMaxDurationS));
 
   if (root["world"].IsDefined() && !root["world"].IsNull()) {
     const YAML::Node world = root["world"];

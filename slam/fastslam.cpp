@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "core/odometry_model.hpp"
 #include "slam/particle_weights.hpp"
 #include "slam/range_bearing.hpp"
@@ -41,7 +42,9 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
   auto fail = [&](const std::string& field, const std::string& problem, const std::string& fix) {
     throw InputError(where + "." + field, 0, problem, fix);
   };
-  if (c.particles < 1) fail("particles", "needs at least one particle", "set particles >= 1 (e.g. 100)");
+  if (c.particles < 1 || c.particles > limits::kMaxParticles)
+    fail("particles", "needs 1 .. " + std::to_string(limits::kMaxParticles) + " particles, got " + std::to_string(c.particles),
+         "set particles to e.g. 100");
   if (!(c.new_landmark_gate_chi2 > 0)) fail("new_landmark_gate_chi2", "must be positive", "e.g. 25");
   if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
