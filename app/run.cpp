@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "app/registry.hpp"
+#include "app/render_library.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/json_io.hpp"
@@ -18,7 +19,6 @@
 #include "core/tum.hpp"
 #include "core/version.hpp"
 #include "eval/evaluate.hpp"
-#include "render/figures_run.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulate.hpp"
 
@@ -101,6 +101,7 @@ void WriteJson(const fs::path& path, const json& j) { WriteFileAtomic(path.strin
 }  // namespace
 
 json RunAndWrite(const RunRequest& request) {
+  for (const auto& p : request.plugins) LoadPlugin(p);
   const Overrides overrides = SplitOverrides(request.sets);
   const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
   const World& world = stream.header.world;
@@ -159,7 +160,7 @@ json RunAndWrite(const RunRequest& request) {
   }
   doc["peak_rss_mb"] = PeakRssMb();
   WriteJson(dir / "metrics.json", doc);
-  if (request.figures) render::RenderRunFigures(dir.string());
+  if (request.figures) Render().run_figures(dir.string());
   return doc;
 }
 

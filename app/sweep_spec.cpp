@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <set>
 
 #include "core/error.hpp"
@@ -47,12 +48,12 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   if (!root.IsMap()) throw InputError(path, 1, "a sweep file is a YAML map", "see DESIGN.md: scenarios, algorithms, seeds, grid");
   SweepSpec spec;
   spec.source = path;
-  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s"};
+  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "plugins"};
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (!known.count(key))
       throw InputError(path, Line(kv.first), "unknown key '" + key + "'",
-                       "use scenarios, algorithms, seeds, grid, set, timeout_s");
+                       "use scenarios, algorithms, seeds, grid, set, timeout_s, plugins");
   }
   for (const char* required : {"scenarios", "algorithms", "seeds"})
     if (!root[required]) throw InputError(path, 1, std::string("missing '") + required + "'", std::string("add ") + required + ":");
@@ -97,6 +98,11 @@ SweepSpec LoadSweepSpec(const std::string& path) {
       spec.timeout_s = -1;
     }
     if (!(spec.timeout_s > 0)) throw InputError(path, Line(t), "timeout_s must be a positive number", "write timeout_s: 600");
+  }
+  if (const YAML::Node plugins = root["plugins"]) {
+    const std::filesystem::path base = std::filesystem::path(path).parent_path();
+    for (const auto& p : StringList(plugins, path, "plugins"))
+      spec.plugins.push_back(std::filesystem::path(p).is_absolute() ? p : (base / p).lexically_normal().string());
   }
   return spec;
 }

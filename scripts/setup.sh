@@ -11,6 +11,7 @@ PACKAGES=(
   libpng-dev libfreetype-dev fonts-dejavu-core
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
+  python3  # tests/plugins/example_plugin_test.sh compares results.csv rows
 )
 [ "${1:-}" = "--with-slurm" ] && PACKAGES+=(slurmctld slurmd slurm-client munge)
 missing=()
