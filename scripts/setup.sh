@@ -12,6 +12,7 @@ PACKAGES=(
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
   python3  # tests/plugins/example_plugin_test.sh compares results.csv rows
+  time  # /usr/bin/time: peak RSS in bench/startup.sh
 )
 [ "${1:-}" = "--with-slurm" ] && PACKAGES+=(slurmctld slurmd slurm-client munge)
 missing=()
