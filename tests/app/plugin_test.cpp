@@ -28,7 +28,7 @@ const std::string kBinary = SLAMBOX_BINARY;
 const std::string kPlugins = SLAMBOX_TEST_PLUGIN_DIR;
 const std::string kTestPlugin = kPlugins + "/test_plugin.so";
 
-testing::CliResult Slambox(const std::string& args) { return testing::RunSlambox(kBinary, args); }
+slambox::testing::CliResult Slambox(const std::string& args) { return slambox::testing::RunSlambox(kBinary, args); }
 
 fs::path TempDir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("slambox_plugin_" + name + "_" + std::to_string(getpid()));
@@ -96,7 +96,7 @@ TEST(Plugin, CliLoadErrorsExitNonZeroWithTheMessage) {
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("version_plugin.so: plugin built for slambox API version"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists("/tmp/unused_" + std::to_string(getpid())));
-  const auto env = testing::RunSlambox("SLAMBOX_PLUGIN_PATH=/no/such/dir " + kBinary, "algorithms");
+  const auto env = slambox::testing::RunSlambox("SLAMBOX_PLUGIN_PATH=/no/such/dir " + kBinary, "algorithms");
   EXPECT_EQ(env.code, 2) << env.output;
   EXPECT_NE(env.output.find("SLAMBOX_PLUGIN_PATH: '/no/such/dir' does not exist"), std::string::npos) << env.output;
 }
@@ -143,7 +143,7 @@ TEST(Plugin, RunWithPluginAndAll) {
   // SLAMBOX_PLUGIN_PATH: a folder of plugins, listed by `algorithms`.
   fs::create_directories(dir / "plugins");
   fs::create_symlink(kTestPlugin, dir / "plugins/test_plugin.so");
-  r = testing::RunSlambox("SLAMBOX_PLUGIN_PATH=" + (dir / "plugins").string() + " " + kBinary, "algorithms");
+  r = slambox::testing::RunSlambox("SLAMBOX_PLUGIN_PATH=" + (dir / "plugins").string() + " " + kBinary, "algorithms");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("test-odometry"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(plugin test-plugin)"), std::string::npos) << r.output;
@@ -158,7 +158,7 @@ TEST(Plugin, SweepWorkersRunPluginsWithCrashTimeoutResumeAndShards) {
                           "set: {duration_s: 8}\ngrid:\n  algo.test-fault.fault: [crash, hang]\n"
                           "plugins: [test_plugin.so]\ntimeout_s: 3\n";
   const std::string base = kBinary + " sweep " + sweep.string() + " --no-figures ";
-  auto r = testing::RunSlambox(base, "-j 2 -o " + (dir / "all").string());
+  auto r = slambox::testing::RunSlambox(base, "-j 2 -o " + (dir / "all").string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("8 runs executed, 0 already done, 4 failed"), std::string::npos) << r.output;
   int signal = 0, timeout = 0;
@@ -173,11 +173,11 @@ TEST(Plugin, SweepWorkersRunPluginsWithCrashTimeoutResumeAndShards) {
   }
   EXPECT_EQ(signal, 2);
   EXPECT_EQ(timeout, 2);
-  r = testing::RunSlambox(base, "-j 2 --resume -o " + (dir / "all").string());
+  r = slambox::testing::RunSlambox(base, "-j 2 --resume -o " + (dir / "all").string());
   EXPECT_NE(r.output.find("0 runs executed, 8 already done"), std::string::npos) << r.output;
   // Two shards and a merge give the same results; -j 1 the same as -j 2.
-  ASSERT_EQ(testing::RunSlambox(base, "-j 1 --shard 0/2 -o " + (dir / "sh").string()).code, 0);
-  ASSERT_EQ(testing::RunSlambox(base, "-j 2 --shard 1/2 -o " + (dir / "sh").string()).code, 0);
+  ASSERT_EQ(slambox::testing::RunSlambox(base, "-j 1 --shard 0/2 -o " + (dir / "sh").string()).code, 0);
+  ASSERT_EQ(slambox::testing::RunSlambox(base, "-j 2 --shard 1/2 -o " + (dir / "sh").string()).code, 0);
   ASSERT_EQ(Slambox("sweep --no-figures --merge " + (dir / "sh").string()).code, 0);
   EXPECT_EQ(Read(dir / "all/results.csv"), Read(dir / "sh/results.csv"));
   fs::remove_all(dir);
@@ -194,7 +194,7 @@ TEST(Plugin, ShippedMrptPluginAbsentListsItsModulesUnavailable) {
   fs::copy_file(kBinary, dir / "bin/slambox");
   fs::copy_file(manifest, dir / "lib/slambox/plugins/slambox-mrpt.manifest.json");
   const std::string exe = (dir / "bin/slambox").string();
-  auto r = testing::RunSlambox(exe, "algorithms");
+  auto r = slambox::testing::RunSlambox(exe, "algorithms");
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* name : {"mrpt-icp-slam", "mrpt-ekf-slam", "mrpt-rbpf-slam"}) {
     const auto at = r.output.find(std::string(name) + " ");
@@ -204,19 +204,19 @@ TEST(Plugin, ShippedMrptPluginAbsentListsItsModulesUnavailable) {
     EXPECT_NE(line.find("slambox-mrpt.so not found"), std::string::npos) << line;
   }
   // Everything else works: `all` runs the built-ins.
-  r = testing::RunSlambox(exe, "run landmarks --set duration_s=8 --algo all --no-figures -o " + (dir / "run").string());
+  r = slambox::testing::RunSlambox(exe, "run landmarks --set duration_s=8 --algo all --no-figures -o " + (dir / "run").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const json m = ReadJson(dir / "run/metrics.json");
   EXPECT_TRUE(m["algorithms"].contains("ekf-slam"));
   EXPECT_FALSE(m["algorithms"].contains("mrpt-ekf-slam"));
   // Naming one is an error with the reason.
-  r = testing::RunSlambox(exe, "run landmarks --algo mrpt-ekf-slam --no-figures -o " + (dir / "named").string());
+  r = slambox::testing::RunSlambox(exe, "run landmarks --algo mrpt-ekf-slam --no-figures -o " + (dir / "named").string());
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("'mrpt-ekf-slam' is unavailable"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("not found"), std::string::npos) << r.output;
   // A broken plugin file: the reason is the loader's.
   std::ofstream(dir / "lib/slambox/plugins/slambox-mrpt.so") << "truncated\n";
-  r = testing::RunSlambox(exe, "run landmarks --algo mrpt-ekf-slam --no-figures -o " + (dir / "named").string());
+  r = slambox::testing::RunSlambox(exe, "run landmarks --algo mrpt-ekf-slam --no-figures -o " + (dir / "named").string());
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("not a loadable shared library"), std::string::npos) << r.output;
   fs::remove_all(dir);
