@@ -89,8 +89,9 @@ void LoadShipped(const std::string& file) {
   std::string reason;
   try {
     LoadPluginFile(file, file);
-  } catch (const InputError& e) {
+  } catch (const InputError& e) {  // the problem; the fix for a shipped plugin is FindModule's
     reason = e.what();
+    reason = reason.substr(0, reason.find("\n  fix: "));
   }
   std::vector<ManifestModule> rest;
   for (auto& s : r.shipped) {
