@@ -21,6 +21,8 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("-o,--output", request->output_dir, "output folder")->required();
   cmd->add_flag("--no-figures", [request](std::int64_t) { request->figures = false; }, "skip figures");
   cmd->add_flag("-q,--quiet", request->quiet, "no progress on stderr");
+  cmd->add_option("--relations", request->relations_path,
+                  "Kümmerle relations file of the log (t_i t_j dx dy dz roll pitch dtheta): relation_* on it");
   cmd->add_flag("--skip-unavailable", request->skip_unavailable,
                 "skip listed modules whose sensors the stream lacks (instead of an error)");
   cmd->callback([request] {

@@ -11,9 +11,13 @@ PACKAGES=(
   libpng-dev libfreetype-dev fonts-dejavu-core
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
+  mrpt-common  # MRPT's own config_files/ (the peers' real-log settings come from them, slam/mrpt/README.md)
   python3  # tests/plugins/example_plugin_test.sh compares results.csv rows
   time  # /usr/bin/time: peak RSS in bench/startup.sh
 )
+# MRPT's own applications (icp-slam, rbpf-slam, graphslam-engine), only for the cross-check
+# in slam/mrpt/README.md: `--with-mrpt-apps`.
+[ "${1:-}" = "--with-mrpt-apps" ] && PACKAGES+=(mrpt-apps)
 [ "${1:-}" = "--with-slurm" ] && PACKAGES+=(slurmctld slurmd slurm-client munge)
 missing=()
 for p in "${PACKAGES[@]}"; do
