@@ -14,6 +14,8 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--algo", request->algorithms, "modules to run (comma-separated), or all")
       ->delimiter(',')
       ->default_str("odometry");
+  cmd->add_option("--plugin", request->plugins, "load a module plugin first (repeatable; see docs/plugins.md)")
+      ->type_name("PATH.so");
   cmd->add_option("--seed", request->seed, "simulation seed (scenarios only)")
       ->each([request](const std::string&) { request->seed_given = true; });
   cmd->add_option("--set", request->sets, "override KEY=VALUE (scenario keys, or algo.NAME.FIELD)");

@@ -12,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "app/registry.hpp"
+#include "app/render_library.hpp"
 #include "app/run.hpp"
 #include "app/sweep_exec.hpp"
 #include "app/sweep_lock.hpp"
@@ -21,8 +22,6 @@
 #include "core/error.hpp"
 #include "core/stream_io.hpp"
 #include "eval/relations.hpp"
-#include "render/figures_sweep.hpp"
-#include "render/report.hpp"
 #include "sim/scenario.hpp"
 
 namespace slambox {
@@ -36,6 +35,7 @@ struct SweepArgs {
   int jobs = 0, shards = 8, cpus_per_task = 2;
   double tolerance = 0.10, tolerance_abs = 0.0, timeout_s = 0.0;
   bool resume = false, list = false, emit_slurm = false, figures = true;
+  std::vector<std::string> plugins;  ///< --plugin
 };
 
 void ParseShard(const std::string& text, std::size_t& index, std::size_t& count) {
@@ -95,8 +95,8 @@ int Check(const SweepArgs& a, const std::string& dir) {
 void Finish(const SweepArgs& a, const std::string& dir, const SweepSpec& spec, const std::vector<SweepRun>& runs) {
   WriteSweepSummary(dir, spec, runs);
   if (a.figures) {
-    render::RenderSweepFigures(dir);
-    render::WriteReport(dir);
+    Render().sweep_figures(dir);
+    Render().write_report(dir);
   }
   std::cout << "wrote " << dir << "/results.csv, summary.md" << (a.figures ? ", report.html" : "") << "\n";
   if (!a.check.empty())
@@ -113,6 +113,8 @@ void Sweep(const SweepArgs& a) {
   if (a.sweep_file.empty()) throw InputError("sweep", 0, "no sweep file given", "slambox sweep SWEEP.yaml -o DIR (or --merge DIR)");
   SweepSpec spec = LoadSweepSpec(a.sweep_file);
   if (a.timeout_s > 0) spec.timeout_s = a.timeout_s;
+  std::vector<std::string> plugins = spec.plugins;  // the sweep file's, then --plugin
+  for (const auto& p : a.plugins) plugins.push_back(fs::absolute(p).string());
   const std::vector<SweepRun> all = ExpandSweep(spec);
   if (a.list) {
     for (const auto& r : all) {
@@ -126,10 +128,13 @@ void Sweep(const SweepArgs& a) {
   const std::string exe = fs::read_symlink("/proc/self/exe").string();
   if (a.emit_slurm) {
     fs::create_directories(a.out_dir + "/slurm");
+    std::vector<std::string> cli_plugins;
+    for (const auto& p : a.plugins) cli_plugins.push_back(fs::absolute(p).string());
     std::cout << SlurmArrayScript({fs::absolute(a.sweep_file).string(), fs::absolute(a.out_dir).string(), exe,
-                                   a.shards, a.cpus_per_task, a.time_limit, a.partition});
+                                   a.shards, a.cpus_per_task, a.time_limit, a.partition, cli_plugins});
     return;
   }
+  for (const auto& p : plugins) LoadPlugin(p);  // before the workers fork: they inherit the modules
   Validate(spec, all);
   std::vector<SweepRun> mine = all;
   std::string lock_name = ".lock";
@@ -155,6 +160,7 @@ void Sweep(const SweepArgs& a) {
   o.out_dir = a.out_dir;
   o.worker_exe = a.worker_exe;
   o.algorithms = spec.algorithms;
+  o.plugins = plugins;
   o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.timeout_s = spec.timeout_s;
   o.progress_bar = isatty(STDERR_FILENO);
@@ -171,6 +177,8 @@ void AddSweepCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("sweep", "run scenarios x algorithms x parameter grid x seeds in parallel");
   cmd->add_option("sweep_file", a->sweep_file, "sweep YAML (scenarios, algorithms, seeds, grid)");
   cmd->add_option("-o,--output", a->out_dir, "output folder");
+  cmd->add_option("--plugin", a->plugins, "load a module plugin for every run (repeatable; also `plugins:` in the file)")
+      ->type_name("PATH.so");
   cmd->add_option("-j,--jobs", a->jobs, "worker processes (default: cores)");
   cmd->add_flag("--resume", a->resume, "skip runs that already have a result");
   cmd->add_option("--shard", a->shard, "run only shard I of N (I/N, 0-based), e.g. $SLURM_ARRAY_TASK_ID/8");

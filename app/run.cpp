@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "app/registry.hpp"
+#include "app/render_library.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/finite_estimate.hpp"
@@ -22,7 +23,6 @@
 #include "eval/association.hpp"
 #include "eval/evaluate.hpp"
 #include "eval/grid_map.hpp"
-#include "render/figures_run.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulate.hpp"
 
@@ -143,6 +143,7 @@ Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Str
 }
 
 json RunAndWrite(const RunRequest& request) {
+  for (const auto& p : request.plugins) LoadPlugin(p);
   const Overrides overrides = SplitOverrides(request.sets);
   const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
   const World& world = stream.header.world;
@@ -207,7 +208,7 @@ json RunAndWrite(const RunRequest& request) {
   }
   doc["peak_rss_mb"] = PeakRssMb();
   WriteJson(dir / "metrics.json", doc);
-  if (request.figures) render::RenderRunFigures(dir.string());
+  if (request.figures) Render().run_figures(dir.string());
   return doc;
 }
 

@@ -42,6 +42,7 @@ struct RunRequest {
   bool seed_given = false;
   std::vector<std::string> sets;        ///< raw `--set k=v` arguments
   std::vector<std::string> algorithms;  ///< names, or {"all"}
+  std::vector<std::string> plugins;     ///< module plugins to load first (`--plugin PATH.so`)
   std::string output_dir;
   bool figures = true;
   bool quiet = false;  ///< no progress lines on stderr

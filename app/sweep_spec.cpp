@@ -75,12 +75,12 @@ SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
   if (!root.IsMap()) throw InputError(path, 1, "a sweep file is a YAML map", "see DESIGN.md: scenarios, algorithms, seeds, grid");
   SweepSpec spec;
   spec.source = path;
-  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations"};
+  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations", "plugins"};
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (!known.count(key))
       throw InputError(path, Line(kv.first), "unknown key '" + key + "'",
-                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations");
+                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations, plugins");
   }
   for (const char* required : {"scenarios", "algorithms", "seeds"})
     if (!root[required]) throw InputError(path, 1, std::string("missing '") + required + "'", std::string("add ") + required + ":");
@@ -156,6 +156,11 @@ SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
                      "the sweep asks for " + std::to_string(runs) + " runs (scenarios x grid points x seeds), over the limit of " +
                          std::to_string(limits::kMaxSweepRuns),
                      "split it into several sweeps, or use fewer grid values or seeds");
+  if (const YAML::Node plugins = root["plugins"]) {
+    const std::filesystem::path base = std::filesystem::path(path).parent_path();
+    for (const auto& p : StringList(plugins, path, "plugins"))
+      spec.plugins.push_back(std::filesystem::path(p).is_absolute() ? p : (base / p).lexically_normal().string());
+  }
   return spec;
 }
 

@@ -7,6 +7,7 @@
 //     sensors.lidar.sigma_range_m: [0.01, 0.05]
 //   set: {robot.laps: 1}               # optional: fixed overrides for every run
 //   timeout_s: 600                     # optional: a run taking longer is killed, recorded failed
+//   plugins: [build/libmy_plugin.so]   # optional: module plugins (paths relative to this file)
 //   relations: {intel.stream: intel.relations}  # optional: Kümmerle relations per scenario entry
 // A run = one scenario x one grid point x one seed; it simulates its stream once and
 // replays it to every algorithm. A `scenarios` entry may be a stream file (e.g. a
@@ -27,6 +28,7 @@ struct SweepSpec {
   std::vector<std::pair<std::string, std::vector<std::string>>> grid;  ///< key -> values (YAML text), file order
   std::vector<std::pair<std::string, std::string>> fixed;              ///< `set:` key -> value
   double timeout_s = 1800.0;
+  std::vector<std::string> plugins;  ///< module plugin files, resolved against the sweep file's folder
   std::vector<std::pair<std::string, std::string>> relations;  ///< scenario entry -> relations file
 };
 

@@ -161,13 +161,30 @@ void WriteEvent(Writer& w, const SensorEvent& event) {
       },
       event);
 }
+
+// Bytes WriteEvent writes for `event`: SerializeStream reserves the whole file at once
+// (growing an 8 MB string by doubling cost a fifth of `slambox simulate loop`).
+size_t EventBytes(const SensorEvent& event) {
+  return std::visit(
+      [](const auto& e) -> size_t {
+        using E = std::decay_t<decltype(e)>;
+        if constexpr (std::is_same_v<E, OdometryEvent>) return 1 + 4 * 8;
+        else if constexpr (std::is_same_v<E, LaserScanEvent>) return 1 + 5 * 8 + 4 + 9 * e.ranges_m.size();
+        else if constexpr (std::is_same_v<E, LandmarkEvent>) return 1 + 8 + 4 + 20 * e.observations.size();
+        else return 1 + 2 * 8;
+      },
+      event);
+}
 }  // namespace
 
 std::string SerializeStream(const Stream& stream) {
   Writer w;
+  const std::string header = HeaderJson(stream.header).dump();
+  size_t bytes = sizeof kMagic + 4 + 8 + header.size() + stream.groundtruth.size() * (1 + 4 * 8) + 1 + 3 * 8;
+  for (const SensorEvent& e : stream.events) bytes += EventBytes(e);
+  w.out.reserve(bytes);
   w.out.append(kMagic, sizeof kMagic);
   w.U32(static_cast<std::uint32_t>(StreamHeader::kFormatVersion));
-  const std::string header = HeaderJson(stream.header).dump();
   w.U64(header.size());
   w.out += header;
   for (const SensorEvent& e : stream.events) WriteEvent(w, e);
@@ -179,7 +196,7 @@ std::string SerializeStream(const Stream& stream) {
   w.U64(stream.events.size());
   w.U64(stream.groundtruth.size());
   w.U64(Fnv1a(w.out, w.out.size()));
-  return w.out;
+  return std::move(w.out);
 }
 
 Stream ParseStream(const std::string& bytes, const std::string& name) {
