@@ -17,6 +17,7 @@
 #include "app/sweep_exec.hpp"
 #include "app/sweep_lock.hpp"
 #include "app/sweep_slurm.hpp"
+#include "app/sweep_check.hpp"
 #include "app/sweep_summary.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -77,19 +78,12 @@ void WriteManifest(const std::string& dir, const SweepSpec& spec) {
   WriteFileAtomic(dir + "/sweep.json", manifest.dump(1) + "\n");
 }
 
-int Check(const SweepArgs& a, const std::string& dir) {
-  const auto regressions = CheckBaseline(dir + "/results.csv", a.check, a.tolerance, a.tolerance_abs);
-  if (regressions.empty()) {
-    std::cout << "check: no cell got worse than " << a.check << " beyond tolerance " << a.tolerance << "\n";
-    return 0;
-  }
-  std::cerr << "check: " << regressions.size() << " regression(s) against " << a.check << ":\n";
-  for (const auto& r : regressions) {
-    std::cerr << "  " << r.cell << "  " << r.metric << ": baseline " << r.baseline_mean << " -> ";
-    if (std::isnan(r.current_mean)) std::cerr << "missing\n";
-    else std::cerr << r.current_mean << " (+" << 100.0 * (r.current_mean / r.baseline_mean - 1.0) << "%)\n";
-  }
-  return 4;
+int Check(const SweepArgs& a, const std::string& dir, const SweepSpec& spec) {
+  CheckOptions options{.tolerance = {.relative = a.tolerance, .absolute = a.tolerance_abs}};
+  for (const auto& [metric, tol] : spec.check_tolerances) options.per_metric[metric] = {tol.first, tol.second};
+  const CheckReport report = CheckAgainstBaseline(ReadResultsCsv(dir + "/results.csv"), ReadResultsCsv(a.check), options);
+  (report.regressions.empty() ? std::cout : std::cerr) << FormatCheckReport(report, a.check, options);
+  return report.regressions.empty() ? 0 : 4;
 }
 
 void Finish(const SweepArgs& a, const std::string& dir, const SweepSpec& spec, const std::vector<SweepRun>& runs) {
@@ -100,7 +94,7 @@ void Finish(const SweepArgs& a, const std::string& dir, const SweepSpec& spec, c
   }
   std::cout << "wrote " << dir << "/results.csv, summary.md" << (a.figures ? ", report.html" : "") << "\n";
   if (!a.check.empty())
-    if (const int code = Check(a, dir)) throw CommandExit{code};
+    if (const int code = Check(a, dir, spec)) throw CommandExit{code};
 }
 
 void Sweep(const SweepArgs& a) {

@@ -13,6 +13,7 @@
 #include "core/limits.hpp"
 #include "core/stream_io.hpp"
 #include "core/version.hpp"
+#include "eval/metrics.hpp"
 
 namespace slambox {
 
@@ -46,6 +47,34 @@ std::vector<std::string> SweptAndSetKeys(const SweepSpec& spec) {
   return keys;
 }
 
+// check: {METRIC: {relative: R, absolute: A}} -> spec.check_tolerances (a `sweep --check` metric only).
+void ParseCheckTolerances(const YAML::Node& check, const std::string& path, SweepSpec& spec) {
+  const std::string example = "write check: {ate_rmse_m: {relative: 0.1, absolute: 0.001}}";
+  if (!check.IsMap()) throw InputError(path, Line(check), "'check' must map metrics to tolerances", example);
+  for (const auto& kv : check) {
+    const std::string metric = kv.first.Scalar();
+    const MetricDescriptor* d = FindMetric(metric);
+    if (!d || !d->checked)
+      throw InputError(path, Line(kv.first), "'" + metric + "' is not a metric that sweep --check compares",
+                       "use a checked metric of eval/README.md (ate_*, rpe_*, landmark_rmse_m, anees, relation_*)");
+    if (!kv.second.IsMap()) throw InputError(path, Line(kv.second), "the tolerance of '" + metric + "' must be a map", example);
+    std::pair<double, double> tol{0.1, 0.0};
+    for (const auto& t : kv.second) {
+      const std::string key = t.first.Scalar();
+      double* field = key == "relative" ? &tol.first : key == "absolute" ? &tol.second : nullptr;
+      if (!field) throw InputError(path, Line(t.first), "unknown tolerance key '" + key + "'", "use relative, absolute");
+      try {
+        *field = t.second.as<double>();
+      } catch (const YAML::BadConversion&) {
+        *field = -1;
+      }
+      if (!(*field >= 0 && *field < 1e6))
+        throw InputError(path, Line(t.second), key + " tolerance of '" + metric + "' must be a number >= 0", example);
+    }
+    spec.check_tolerances.emplace_back(metric, tol);
+  }
+}
+
 }  // namespace
 
 SweepSpec LoadSweepSpec(const std::string& path) {
@@ -75,12 +104,12 @@ SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
   if (!root.IsMap()) throw InputError(path, 1, "a sweep file is a YAML map", "see DESIGN.md: scenarios, algorithms, seeds, grid");
   SweepSpec spec;
   spec.source = path;
-  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations", "plugins"};
+  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations", "plugins", "check"};
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (!known.count(key))
       throw InputError(path, Line(kv.first), "unknown key '" + key + "'",
-                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations, plugins");
+                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations, plugins, check");
   }
   for (const char* required : {"scenarios", "algorithms", "seeds"})
     if (!root[required]) throw InputError(path, 1, std::string("missing '") + required + "'", std::string("add ") + required + ":");
@@ -141,6 +170,7 @@ SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
       spec.relations.emplace_back(entry, kv.second.Scalar());
     }
   }
+  if (const YAML::Node check = root["check"]) ParseCheckTolerances(check, path, spec);
   // A stream is already simulated: scenario overrides cannot apply to it.
   for (const auto& scenario : spec.scenarios) {
     if (!std::filesystem::is_regular_file(scenario) || !IsStreamFile(scenario)) continue;

@@ -30,6 +30,8 @@ struct SweepSpec {
   double timeout_s = 1800.0;
   std::vector<std::string> plugins;  ///< module plugin files, resolved against the sweep file's folder
   std::vector<std::pair<std::string, std::string>> relations;  ///< scenario entry -> relations file
+  /// `check:` metric -> (relative, absolute) tolerance for `sweep --check` (else the flags').
+  std::vector<std::pair<std::string, std::pair<double, double>>> check_tolerances;
 };
 
 struct SweepRun {
