@@ -1,5 +1,6 @@
 #include "app/registry.hpp"
 
+#include "app/exec_module.hpp"
 #include "core/error.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/ekf_slam.hpp"
@@ -34,11 +35,12 @@ const std::vector<ModuleInfo>& AllModules() {
 }
 
 const ModuleInfo& FindModule(const std::string& name) {
+  if (name.rfind("exec:", 0) == 0) return FindExecModule(name);  // a child process (docs/exec_protocol.md)
   for (const auto& m : AllModules())
     if (m.name == name) return m;
   std::string names;
   for (const auto& m : AllModules()) names += (names.empty() ? "" : ", ") + m.name;
-  throw InputError("--algo", 0, "unknown algorithm '" + name + "'", "use one of: " + names + ", or all");
+  throw InputError("--algo", 0, "unknown algorithm '" + name + "'", "use one of: " + names + ", all, or exec:NAME");
 }
 
 bool SensorsAllow(const ModuleInfo& module, const SensorSuite& sensors, bool has_map) {

@@ -75,7 +75,7 @@ std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& reque
     if (!SensorsAllow(m, sensors, has_map))
       throw InputError("--algo " + r, 0, "'" + r + "' localizes in a known map and the stream's world has no walls",
                        "run it on a scenario (a converted real log carries no map)");
-    names.push_back(r);
+    names.push_back(m.name);  // canonical: exec:PATH/NAME.yaml runs as exec:NAME
   }
   if (names.empty()) throw InputError("--algo", 0, "no algorithm to run", "give --algo NAME[,NAME...] or all");
   return names;
@@ -150,6 +150,8 @@ json RunAndWrite(const RunRequest& request) {
       WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
       WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));
       WriteJson(dir / "series" / (name + ".json"), evaluation.series);
+    } catch (const ModuleDiverged& e) {  // e.g. an exec child's NaN pose
+      metrics = {{"status", "diverged"}, {"reason", e.what()}};
     } catch (const std::exception& e) {  // a failing module never takes the others down
       metrics = {{"status", "failed"}, {"reason", e.what()}};
     }

@@ -10,6 +10,7 @@ PACKAGES=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnanoflann-dev
   libpng-dev libfreetype-dev fonts-dejavu-core
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
+  python3  # /usr/bin/python3 (json, ctypes) for the exec example and its tests (examples/python/)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
 )
 [ "${1:-}" = "--with-slurm" ] && PACKAGES+=(slurmctld slurmd slurm-client munge)
