@@ -109,20 +109,28 @@ struct ParamValue {
 };
 
 json BindAndApply(const ExecDeclaration& decl, const ParamOverrides* overrides, std::vector<ParamInfo>* list) {
-  std::deque<ParamValue> values;
+  std::deque<ParamValue> values(decl.params.size());
+  const auto bind_all = [&](ParamBinder& binder) {
+    for (std::size_t k = 0; k < decl.params.size(); ++k) {
+      const ExecParam& p = decl.params[k];
+      ParamValue& v = values[k];
+      if (p.type == "double") binder.Bind(p.name, v.d, p.unit, p.meaning);
+      else if (p.type == "int") binder.Bind(p.name, v.i, p.unit, p.meaning);
+      else if (p.type == "bool") binder.Bind(p.name, v.b, p.unit, p.meaning);
+      else binder.Bind(p.name, v.s, p.choices, p.meaning);
+    }
+  };
   ParamBinder binder;
+  bind_all(binder);
   ParamOverrides defaults;
-  for (const ExecParam& p : decl.params) {
-    ParamValue& v = values.emplace_back();
-    if (p.type == "double") binder.Bind(p.name, v.d, p.unit, p.meaning);
-    else if (p.type == "int") binder.Bind(p.name, v.i, p.unit, p.meaning);
-    else if (p.type == "bool") binder.Bind(p.name, v.b, p.unit, p.meaning);
-    else v.s = p.choices.front(), binder.Bind(p.name, v.s, p.choices, p.meaning);
-    defaults[p.name] = p.default_text;
-  }
+  for (const ExecParam& p : decl.params) defaults[p.name] = p.default_text;
   binder.Apply(defaults, decl.name);  // the declared defaults, parsed and checked like --set values
+  if (list) {  // bound again, now holding the defaults, so the listing shows them
+    ParamBinder listing;
+    bind_all(listing);
+    *list = listing.List();
+  }
   if (overrides) binder.Apply(*overrides, decl.name);
-  if (list) *list = binder.List();
   json j = json::object();
   for (std::size_t k = 0; k < decl.params.size(); ++k) {
     const ExecParam& p = decl.params[k];

@@ -14,8 +14,7 @@ using nlohmann::json;
 
 std::string ExecHeaderLine(const StreamHeader& header, const std::string& module, const json& params,
                            bool with_world) {
-  json j = {{"type", "header"},
-            {"protocol", "slambox-exec"},
+  json j = {{"protocol", "slambox-exec"},
             {"version", kExecProtocolVersion},
             {"module", module},
             {"params", params.is_null() ? json::object() : params},
@@ -27,7 +26,7 @@ std::string ExecHeaderLine(const StreamHeader& header, const std::string& module
             {"sensors", ToJson(header.sensors)}};
   if (with_world) j["world"] = ToJson(header.world);
   if (module.empty()) j.erase("module"), j.erase("params");
-  return j.dump();
+  return "{\"type\":\"header\"," + j.dump().substr(1);  // "type" first, as in every line
 }
 
 namespace {

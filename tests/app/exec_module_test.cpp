@@ -149,17 +149,17 @@ TEST(ExecModule, AllWithAnExecModule) {
 TEST(ExecModule, BadDeclarationsAndNamesAreClearErrors) {
   const fs::path dir = TempDir("decl");
   fs::create_directories(dir);
-  const auto missing = Slambox("run loop --algo exec:no-such-module -o " + (dir / "o").string());
+  const auto missing = Slambox("run loop --set duration_s=2 --algo exec:no-such-module -o " + (dir / "o").string());
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.output.find("no-such-module.yaml"), std::string::npos) << missing.output;
   EXPECT_NE(missing.output.find("SLAMBOX_EXEC_PATH"), std::string::npos) << missing.output;
   std::ofstream(dir / "bad.yaml") << "version: 1\ncommand: [/bin/true]\nneeds: [odometry, sonar]\n";
-  const auto bad = Slambox("run loop --algo exec:" + (dir / "bad.yaml").string() + " -o " + (dir / "o").string());
+  const auto bad = Slambox("run loop --set duration_s=2 --algo exec:" + (dir / "bad.yaml").string() + " -o " + (dir / "o").string());
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.output.find("bad.yaml:3"), std::string::npos) << bad.output;
   EXPECT_NE(bad.output.find("sonar"), std::string::npos) << bad.output;
   std::ofstream(dir / "typo.yaml") << "version: 1\ncommand: [/bin/true]\ncomand: [x]\n";
-  const auto typo = Slambox("run loop --algo exec:" + (dir / "typo.yaml").string() + " -o " + (dir / "o").string());
+  const auto typo = Slambox("run loop --set duration_s=2 --algo exec:" + (dir / "typo.yaml").string() + " -o " + (dir / "o").string());
   EXPECT_NE(typo.output.find("typo.yaml:3: unknown key 'comand'"), std::string::npos) << typo.output;
   std::ofstream(dir / "nocmd.yaml") << "version: 1\ncommand: [/nonexistent/program]\nneeds: [odometry]\n";
   const auto nocmd = Slambox("run loop --set duration_s=2 --algo odometry,exec:" + (dir / "nocmd.yaml").string() +
