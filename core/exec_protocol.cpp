@@ -6,6 +6,7 @@
 #include <initializer_list>
 
 #include "core/error.hpp"
+#include "core/flat_json.hpp"
 #include "core/json_io.hpp"
 
 namespace slambox {
@@ -128,46 +129,31 @@ struct LineContext {
   }
 };
 
-void CheckKeys(const json& j, std::initializer_list<const char*> required, std::initializer_list<const char*> optional,
-               const LineContext& c) {
+void CheckKeys(const FlatObject& j, std::initializer_list<const char*> required,
+               std::initializer_list<const char*> optional, const LineContext& c) {
   for (const char* k : required)
-    if (!j.contains(k)) c.Fail(std::string("missing key '") + k + "'");
-  for (const auto& [key, value] : j.items()) {
+    if (!j.Find(k)) c.Fail(std::string("missing key '") + k + "'");
+  for (const auto& [key, value] : j.members) {
     const auto is = [&](const char* k) { return key == k; };
     if (std::none_of(required.begin(), required.end(), is) && std::none_of(optional.begin(), optional.end(), is))
       c.Fail("unknown key '" + key + "'");
   }
 }
 
-/// A number, or NaN for the null that stands in for a bare NaN/Infinity token.
-double Number(const json& j, const char* key, bool had_non_finite, const LineContext& c) {
-  const json& v = j.at(key);
-  if (v.is_number()) return v.get<double>();
-  if (v.is_null() && had_non_finite) return std::nan("");
-  c.Fail(std::string("'") + key + "' must be a number");
+/// A number (a NaN/Infinity token reads as non-finite: the caller decides between failed
+/// and diverged).
+double Number(const FlatObject& j, const char* key, const LineContext& c) {
+  const FlatValue& v = *j.Find(key);
+  if (v.kind != FlatValue::Kind::kNumber) c.Fail(std::string("'") + key + "' must be a number");
+  return v.number;
 }
 
 template <int N>
-void Matrix(const json& j, double* out, bool had_non_finite, const LineContext& c) {
-  const json& v = j.at("covariance");
-  if (!v.is_array() || v.size() != N) c.Fail("'covariance' must be an array of " + std::to_string(N) + " numbers");
-  for (int i = 0; i < N; ++i) {
-    if (v[i].is_number()) out[i] = v[i].get<double>();
-    else if (v[i].is_null() && had_non_finite) out[i] = std::nan("");
-    else c.Fail("'covariance' must be an array of " + std::to_string(N) + " numbers");
-  }
-}
-
-/// Python's json writes NaN and ±Infinity as bare tokens, which are not JSON. To tell a
-/// diverged module from a garbled line, a line that does not parse is retried with those
-/// tokens read as null.
-std::string NonFiniteAsNull(std::string_view line) {
-  std::string s(line);
-  for (const char* token : {"-Infinity", "Infinity", "NaN"}) {
-    const std::string t(token);
-    for (std::size_t at = s.find(t); at != std::string::npos; at = s.find(t, at)) s.replace(at, t.size(), "null");
-  }
-  return s;
+void Matrix(const FlatObject& j, double* out, const LineContext& c) {
+  const FlatValue& v = *j.Find("covariance");
+  if (v.kind != FlatValue::Kind::kNumberArray || v.numbers.size() != N)
+    c.Fail("'covariance' must be an array of " + std::to_string(N) + " numbers");
+  std::copy(v.numbers.begin(), v.numbers.end(), out);
 }
 
 }  // namespace
@@ -175,33 +161,28 @@ std::string NonFiniteAsNull(std::string_view line) {
 void ExecAnswerParser::ParseLine(std::string_view line, long line_number, double latest_event_t_s) {
   const LineContext c{line, line_number};
   if (done_) c.Fail("output after {\"type\":\"done\"}");
-  bool non_finite = false;
-  json j = json::parse(line.begin(), line.end(), nullptr, false);
-  if (j.is_discarded()) {
-    j = json::parse(NonFiniteAsNull(line), nullptr, false);
-    if (j.is_discarded()) c.Fail("not a JSON object");
-    non_finite = true;
-  }
-  if (!j.is_object() || !j.contains("type") || !j["type"].is_string()) c.Fail("expected an object with a string 'type'");
-  const std::string type = j["type"].get<std::string>();
+  FlatObject& j = object_;
+  if (const std::string error = ParseFlatObject(line, j); !error.empty()) c.Fail("not a JSON object (" + error + ")");
+  const FlatValue* type_value = j.Find("type");
+  if (!type_value || type_value->kind != FlatValue::Kind::kString) c.Fail("expected an object with a string 'type'");
+  const std::string& type = type_value->text;
   const auto diverged = [&](const std::string& what) {
     throw ModuleDiverged("stdout line " + std::to_string(line_number) + ": non-finite " + what);
   };
   if (type == "pose") {
     CheckKeys(j, {"type", "t_s", "x_m", "y_m", "theta_rad"}, {"covariance"}, c);
     PoseEstimate p;
-    p.t_s = Number(j, "t_s", false, c);
+    p.t_s = Number(j, "t_s", c);
     if (!std::isfinite(p.t_s)) c.Fail("'t_s' must be finite");
     if (!estimate_.trajectory.empty() && !(p.t_s > estimate_.trajectory.back().t_s))
       c.Fail("pose times must increase strictly");
     if (p.t_s > latest_event_t_s) c.Fail("a pose later than the last event sent");
-    const double x = Number(j, "x_m", non_finite, c), y = Number(j, "y_m", non_finite, c),
-                 theta = Number(j, "theta_rad", non_finite, c);
+    const double x = Number(j, "x_m", c), y = Number(j, "y_m", c), theta = Number(j, "theta_rad", c);
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(theta)) diverged("pose");
     p.pose = SE2(x, y, theta);
-    if (j.contains("covariance")) {
+    if (j.Find("covariance")) {
       Eigen::Matrix<double, 3, 3, Eigen::RowMajor> row_major;
-      Matrix<9>(j, row_major.data(), non_finite, c);
+      Matrix<9>(j, row_major.data(), c);
       p.covariance = row_major;
       if (!p.covariance.allFinite()) diverged("pose covariance");
       p.has_covariance = true;
@@ -209,17 +190,19 @@ void ExecAnswerParser::ParseLine(std::string_view line, long line_number, double
     estimate_.trajectory.push_back(p);
   } else if (type == "landmark") {
     CheckKeys(j, {"type", "id", "x_m", "y_m"}, {"covariance"}, c);
-    if (!j["id"].is_number_integer()) c.Fail("'id' must be an integer");
+    const FlatValue& id = *j.Find("id");
+    if (id.kind != FlatValue::Kind::kNumber || !id.integer || std::abs(id.number) > 2147483647.0)
+      c.Fail("'id' must be an integer");
     LandmarkEstimate l;
-    l.id = j["id"].get<int>();
+    l.id = static_cast<int>(id.number);
     const auto at = std::lower_bound(landmark_ids_.begin(), landmark_ids_.end(), l.id);
     if (at != landmark_ids_.end() && *at == l.id) c.Fail("duplicate landmark id " + std::to_string(l.id));
     landmark_ids_.insert(at, l.id);
-    l.position = {Number(j, "x_m", non_finite, c), Number(j, "y_m", non_finite, c)};
+    l.position = {Number(j, "x_m", c), Number(j, "y_m", c)};
     if (!l.position.allFinite()) diverged("landmark position");
-    if (j.contains("covariance")) {
+    if (j.Find("covariance")) {
       Eigen::Matrix<double, 2, 2, Eigen::RowMajor> row_major;
-      Matrix<4>(j, row_major.data(), non_finite, c);
+      Matrix<4>(j, row_major.data(), c);
       l.covariance = row_major;
       if (!l.covariance.allFinite()) diverged("landmark covariance");
       l.has_covariance = true;
@@ -227,9 +210,11 @@ void ExecAnswerParser::ParseLine(std::string_view line, long line_number, double
     estimate_.landmarks.push_back(l);
   } else if (type == "diagnostic") {
     CheckKeys(j, {"type", "name", "t_s", "value"}, {}, c);
-    if (!j["name"].is_string()) c.Fail("'name' must be a string");
-    estimate_.diagnostics[j["name"].get<std::string>()].emplace_back(Number(j, "t_s", false, c),
-                                                                      Number(j, "value", non_finite, c));
+    const FlatValue& name = *j.Find("name");
+    if (name.kind != FlatValue::Kind::kString) c.Fail("'name' must be a string");
+    const double t_s = Number(j, "t_s", c);
+    if (!std::isfinite(t_s)) c.Fail("'t_s' must be finite");
+    estimate_.diagnostics[name.text].emplace_back(t_s, Number(j, "value", c));
   } else if (type == "done") {
     CheckKeys(j, {"type"}, {}, c);
     done_ = true;

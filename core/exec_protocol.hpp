@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/estimate.hpp"
+#include "core/flat_json.hpp"
 #include "core/stream.hpp"
 
 namespace slambox {
@@ -46,6 +47,7 @@ class ExecAnswerParser {
  private:
   Estimate estimate_;
   std::vector<int> landmark_ids_;  ///< sorted, to reject duplicates
+  FlatObject object_;              ///< reused between lines (no allocation per line)
   bool done_ = false;
 };
 

@@ -124,7 +124,9 @@ TEST(ExecProtocol, RejectsEveryBrokenAnswerNamingTheLine) {
     EXPECT_NE(what.find(needle), std::string::npos) << what;
   };
   failed(ErrorOf({pose, "hello"}), "not a JSON object");
-  failed(ErrorOf({pose, "[1,2]"}), "string 'type'");
+  failed(ErrorOf({pose, "[1,2]"}), "expected '{'");
+  failed(ErrorOf({pose, R"({"x_m":1.0})"}), "string 'type'");
+  failed(ErrorOf({pose, R"({"type":"pose","t_s":2.0,"x_m":0.0,"y_m":0.0,"theta_rad":0} trailing)"}), "text after");
   failed(ErrorOf({pose, R"({"type":"posture"})"}), "unknown type 'posture'");
   failed(ErrorOf({pose, R"({"type":"pose","t_s":2.0,"x_m":0.0,"y_m":0.0})"}), "missing key 'theta_rad'");
   failed(ErrorOf({pose, R"({"type":"pose","t_s":2.0,"x_m":0.0,"y_m":0.0,"theta_rad":0,"z_m":1})"}), "unknown key 'z_m'");
