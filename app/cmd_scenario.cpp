@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/exec_module.hpp"
 #include "app/registry.hpp"
 #include "core/stream_io.hpp"
 #include "sim/scenario.hpp"
@@ -36,14 +37,17 @@ void PrintScenarios() {
 }
 
 void PrintAlgorithms() {
+  std::vector<const ModuleInfo*> modules;
+  for (const auto& m : AllModules()) modules.push_back(&m);
+  for (const ModuleInfo* m : ExecModulesOnPath()) modules.push_back(m);  // declared on $SLAMBOX_EXEC_PATH
   std::size_t name_w = 0, needs_w = 0;
-  for (const auto& m : AllModules()) {
-    name_w = std::max(name_w, m.name.size());
-    needs_w = std::max(needs_w, Needs(m.needs).size());
+  for (const ModuleInfo* m : modules) {
+    name_w = std::max(name_w, m->name.size());
+    needs_w = std::max(needs_w, Needs(m->needs).size());
   }
-  for (const auto& m : AllModules())
-    std::cout << std::left << std::setw(static_cast<int>(name_w) + 2) << m.name
-              << std::setw(static_cast<int>(needs_w) + 2) << Needs(m.needs) << m.description << "\n";
+  for (const ModuleInfo* m : modules)
+    std::cout << std::left << std::setw(static_cast<int>(name_w) + 2) << m->name
+              << std::setw(static_cast<int>(needs_w) + 2) << Needs(m->needs) << m->description << "\n";
 }
 
 void PrintParams(const std::string& module_name) {

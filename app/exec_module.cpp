@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
@@ -234,6 +235,39 @@ ExecDeclaration LoadExecDeclaration(const std::string& path) {
   return d;
 }
 
+namespace {
+
+std::vector<std::string> ExecPathFolders() {
+  std::vector<std::string> folders;
+  if (const char* env = std::getenv("SLAMBOX_EXEC_PATH")) {
+    std::stringstream in(env);
+    for (std::string f; std::getline(in, f, ':');)
+      if (!f.empty()) folders.push_back(f);
+  }
+  return folders;
+}
+
+}  // namespace
+
+std::vector<const ModuleInfo*> ExecModulesOnPath() {
+  std::vector<std::string> names;
+  for (const auto& folder : ExecPathFolders()) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec))
+      if (entry.path().extension() == ".yaml") names.push_back("exec:" + entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  std::vector<const ModuleInfo*> out;
+  for (const auto& name : names) {
+    try {
+      out.push_back(&FindExecModule(name));
+    } catch (const InputError&) {  // not a declaration: `--algo` on it gives the error
+    }
+  }
+  return out;
+}
+
 std::string FindExecDeclaration(const std::string& module_name) {
   const std::string spec = module_name.substr(5);  // after "exec:"
   if (spec.find('/') != std::string::npos || fs::path(spec).extension() == ".yaml") {
@@ -242,12 +276,7 @@ std::string FindExecDeclaration(const std::string& module_name) {
                        "give the path of a NAME.yaml declaration (docs/exec_protocol.md)");
     return spec;
   }
-  std::vector<std::string> folders;
-  if (const char* env = std::getenv("SLAMBOX_EXEC_PATH")) {
-    std::stringstream in(env);
-    for (std::string f; std::getline(in, f, ':');)
-      if (!f.empty()) folders.push_back(f);
-  }
+  std::vector<std::string> folders = ExecPathFolders();
   folders.push_back(".");
   for (const auto& f : folders) {
     const fs::path p = fs::path(f) / (spec + ".yaml");

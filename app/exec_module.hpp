@@ -34,6 +34,9 @@ ExecDeclaration LoadExecDeclaration(const std::string& path);
 /// the current folder) or `exec:PATH.yaml`; throws InputError when there is none.
 std::string FindExecDeclaration(const std::string& module_name);
 ModuleInfo ExecModuleInfo(const ExecDeclaration& declaration);
+/// Every declaration in $SLAMBOX_EXEC_PATH's folders (for `slambox algorithms`), by name;
+/// a file that does not load is left out.
+std::vector<const ModuleInfo*> ExecModulesOnPath();
 /// The registry's resolver for `exec:` names: loads each declaration once and keeps it,
 /// under its canonical name and the name it was asked by.
 const ModuleInfo& FindExecModule(const std::string& module_name);

@@ -171,6 +171,16 @@ TEST(ExecModule, BadDeclarationsAndNamesAreClearErrors) {
   EXPECT_EQ(m["odometry"]["status"], "ok");
 }
 
+TEST(ExecModule, AlgorithmsListsTheDeclarationsOnTheExecPath) {
+  const auto r = Slambox("algorithms");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("exec:crash"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("test child (hang)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("icp-poseslam"), std::string::npos) << r.output;
+  const auto p = Slambox("algorithms --params exec:" + kExample);
+  EXPECT_NE(p.output.find("algo.exec:py-odometry.noise_scale  double  1"), std::string::npos) << p.output;
+}
+
 TEST(ExecModule, ConformanceCheckPassesTheExampleAndFailsBrokenChildren) {
   const auto ok = Slambox("exec-check " + kExample);
   EXPECT_EQ(ok.code, 0) << ok.output;
