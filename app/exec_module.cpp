@@ -115,9 +115,9 @@ json BindAndApply(const ExecDeclaration& decl, const ParamOverrides* overrides, 
     for (std::size_t k = 0; k < decl.params.size(); ++k) {
       const ExecParam& p = decl.params[k];
       ParamValue& v = values[k];
-      if (p.type == "double") binder.Bind(p.name, v.d, p.unit, p.meaning);
-      else if (p.type == "int") binder.Bind(p.name, v.i, p.unit, p.meaning);
-      else if (p.type == "bool") binder.Bind(p.name, v.b, p.unit, p.meaning);
+      if (p.type == ExecParamType::kDouble) binder.Bind(p.name, v.d, p.unit, p.meaning);
+      else if (p.type == ExecParamType::kInt) binder.Bind(p.name, v.i, p.unit, p.meaning);
+      else if (p.type == ExecParamType::kBool) binder.Bind(p.name, v.b, p.unit, p.meaning);
       else binder.Bind(p.name, v.s, p.choices, p.meaning);
     }
   };
@@ -136,9 +136,9 @@ json BindAndApply(const ExecDeclaration& decl, const ParamOverrides* overrides, 
   for (std::size_t k = 0; k < decl.params.size(); ++k) {
     const ExecParam& p = decl.params[k];
     const ParamValue& v = values[k];
-    if (p.type == "double") j[p.name] = v.d;
-    else if (p.type == "int") j[p.name] = v.i;
-    else if (p.type == "bool") j[p.name] = v.b;
+    if (p.type == ExecParamType::kDouble) j[p.name] = v.d;
+    else if (p.type == ExecParamType::kInt) j[p.name] = v.i;
+    else if (p.type == ExecParamType::kBool) j[p.name] = v.b;
     else j[p.name] = v.s;
   }
   return j;
@@ -202,19 +202,25 @@ ExecDeclaration LoadExecDeclaration(const std::string& path) {
           const YAML::Node& pv = pkv.second;
           if (!pv.IsMap()) fail(pv, "parameter '" + p.name + "' must be a map {type, default, unit, meaning}", fix);
           bool has_default = false;
+          std::string type;
           for (const auto& f : pv) {
             const std::string field = f.first.as<std::string>();
-            if (field == "type") p.type = f.second.as<std::string>();
+            if (field == "type") type = f.second.as<std::string>();
             else if (field == "default") p.default_text = f.second.as<std::string>(), has_default = true;
             else if (field == "unit") p.unit = f.second.as<std::string>();
             else if (field == "meaning") p.meaning = f.second.as<std::string>();
             else if (field == "choices") p.choices = f.second.as<std::vector<std::string>>();
             else fail(f.first, "unknown key '" + field + "' in parameter '" + p.name + "'", "use type, default, unit, meaning, choices");
           }
-          if (p.type != "double" && p.type != "int" && p.type != "bool" && p.type != "string")
-            fail(pv, "parameter '" + p.name + "' has type '" + p.type + "'", "use type: double, int, bool or string");
+          const std::map<std::string, ExecParamType> types = {{"double", ExecParamType::kDouble},
+                                                              {"int", ExecParamType::kInt},
+                                                              {"bool", ExecParamType::kBool},
+                                                              {"string", ExecParamType::kString}};
+          if (!types.count(type))
+            fail(pv, "parameter '" + p.name + "' has type '" + type + "'", "use type: double, int, bool or string");
+          p.type = types.at(type);
           if (!has_default) fail(pv, "parameter '" + p.name + "' has no default", "add default: VALUE");
-          if (p.type == "string" && p.choices.empty())
+          if (p.type == ExecParamType::kString && p.choices.empty())
             fail(pv, "string parameter '" + p.name + "' has no choices", "add choices: [a, b] (typed options, not free text)");
           d.params.push_back(p);
         }

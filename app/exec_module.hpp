@@ -8,9 +8,11 @@
 
 namespace slambox {
 
+enum class ExecParamType { kDouble, kInt, kBool, kString };
+
 struct ExecParam {
   std::string name;
-  std::string type;  ///< "double", "int", "bool" or "string"
+  ExecParamType type = ExecParamType::kDouble;
   std::string default_text;
   std::string unit;
   std::string meaning;

@@ -86,6 +86,26 @@ TEST(ExecModule, ParametersPassThroughSet) {
   EXPECT_NE(unknown.output.find("particles"), std::string::npos) << unknown.output;
 }
 
+TEST(ExecModule, EveryParameterTypeReachesTheChildTyped) {
+  const fs::path dir = TempDir("types");
+  const std::string sets =
+      " --set algo.exec:params.gain=2.5 --set algo.exec:params.n=7 --set algo.exec:params.on=true"
+      " --set algo.exec:params.mode=exact";
+  const auto r = Slambox("run loop --set duration_s=3 --algo exec:params" + sets + " --no-figures -q -o " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(ReadJson(dir / "metrics.json")["algorithms"]["exec:params"]["status"], "ok") << r.output;
+  const auto defaults = Slambox("run loop --set duration_s=3 --algo exec:params --no-figures -q -o " + dir.string());
+  EXPECT_EQ(ReadJson(dir / "metrics.json")["algorithms"]["exec:params"]["status"], "failed") << defaults.output;
+  const auto listing = Slambox("algorithms --params exec:params");
+  for (const char* row : {"algo.exec:params.gain  double  1", "algo.exec:params.n     int     3",
+                          "algo.exec:params.on    bool    false", "algo.exec:params.mode  string  fast"})
+    EXPECT_NE(listing.output.find(row), std::string::npos) << row << "\n" << listing.output;
+  const auto bad = Slambox("run loop --set duration_s=3 --algo exec:params --set algo.exec:params.mode=slow -o " +
+                           dir.string());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("slow"), std::string::npos) << bad.output;
+}
+
 TEST(ExecModule, EachMisbehavingChildGetsAClearStatusAndTheOthersGoOn) {
   const fs::path dir = TempDir("children");
   const auto r = Slambox(

@@ -4,7 +4,8 @@
 crash: dies by SIGSEGV after 100 events; exit3: exits with status 3 before done;
 hang: reads the header, then sleeps; garbage: answers a line that is not JSON;
 nan: a NaN pose (Python's json writes a bare NaN); flood: 8 MiB of stderr before each
-of the first answers, then valid dead reckoning (no deadlock); quiet-exit: exits 0 before done.
+of the first answers, then valid dead reckoning (no deadlock); quiet-exit: exits 0 before done;
+params: valid dead reckoning if the header's params are those the test sets, else exit 5.
 """
 import json
 import math
@@ -24,6 +25,11 @@ for line in sys.stdin:
         sys.stderr.flush()
         if mode == "hang":
             time.sleep(3600)
+        if mode == "params":
+            expected = {"gain": 2.5, "n": 7, "on": True, "mode": "exact"}
+            if ev["params"] != expected:
+                sys.exit("child params: got %r, expected %r" % (ev["params"], expected))
+            mode = "flood-free"
         x, y, theta = ev["start_pose"]
         print(json.dumps({"type": "pose", "t_s": 0.0, "x_m": x, "y_m": y, "theta_rad": theta}))
         continue
@@ -44,7 +50,7 @@ for line in sys.stdin:
                   flush=True)
     if mode == "flood" and count < 5:
         sys.stderr.write("x" * (8 << 20) + "\n")
-    if mode == "flood" and ev["type"] == "odometry":
+    if mode in ("flood", "flood-free") and ev["type"] == "odometry":
         c, s = math.cos(theta), math.sin(theta)
         x, y = x + c * ev["dx_m"] - s * ev["dy_m"], y + s * ev["dx_m"] + c * ev["dy_m"]
         theta = math.remainder(theta + ev["dtheta_rad"], 2 * math.pi)
