@@ -4,37 +4,11 @@
 #include <string>
 #include <vector>
 
+#include "app/exec_declaration.hpp"
 #include "core/slam_module.hpp"
 
 namespace slambox {
 
-enum class ExecParamType { kDouble, kInt, kBool, kString };
-
-struct ExecParam {
-  std::string name;
-  ExecParamType type = ExecParamType::kDouble;
-  std::string default_text;
-  std::string unit;
-  std::string meaning;
-  std::vector<std::string> choices;  ///< strings only
-};
-
-struct ExecDeclaration {
-  std::string name;  ///< "exec:" + the file's stem
-  std::string file;
-  std::string description;
-  std::vector<std::string> command;  ///< argv, run in working_dir
-  std::string working_dir;           ///< the declaration file's folder
-  SensorNeeds needs;
-  double idle_timeout_s = 30.0;  ///< [s] child killed after this long without progress
-  std::vector<ExecParam> params;
-};
-
-/// Parses a declaration file; throws InputError with the file, line and fix.
-ExecDeclaration LoadExecDeclaration(const std::string& path);
-/// The declaration file of `exec:NAME` (NAME.yaml in $SLAMBOX_EXEC_PATH's folders, then
-/// the current folder) or `exec:PATH.yaml`; throws InputError when there is none.
-std::string FindExecDeclaration(const std::string& module_name);
 ModuleInfo ExecModuleInfo(const ExecDeclaration& declaration);
 /// Every declaration in $SLAMBOX_EXEC_PATH's folders (for `slambox algorithms`), by name;
 /// a file that does not load is left out.
