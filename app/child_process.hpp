@@ -3,6 +3,8 @@
 // modules. One poll() loop moves bytes both ways, so neither a child that writes a lot
 // of stderr nor one that answers while it reads can deadlock against slambox; a child
 // that makes no progress for idle_timeout_s is killed (its whole process group).
+// Starting a child sets SIGPIPE to ignored in slambox (a write to a child that exited
+// must fail with EPIPE, not kill slambox); the child gets the default disposition back.
 #include <sys/types.h>
 
 #include <functional>
