@@ -139,12 +139,23 @@ const ModuleInfo& FindExecModule(const std::string& module_name) {
   static std::mutex mutex;
   static std::deque<ModuleInfo> loaded;                 // stable references
   static std::map<std::string, const ModuleInfo*> by_name;  // canonical and as-asked names
+  static std::map<std::string, std::string> file_of;         // canonical name -> declaration file
   const std::lock_guard lock(mutex);
   if (const auto it = by_name.find(module_name); it != by_name.end()) return *it->second;
-  const ExecDeclaration declaration = LoadExecDeclaration(FindExecDeclaration(module_name));
+  const std::string file = FindExecDeclaration(module_name);
+  const ExecDeclaration declaration = LoadExecDeclaration(file);
   const ModuleInfo* info = nullptr;
-  if (const auto it = by_name.find(declaration.name); it != by_name.end()) info = it->second;
-  else info = &loaded.emplace_back(ExecModuleInfo(declaration));
+  if (const auto it = by_name.find(declaration.name); it != by_name.end()) {
+    if (!fs::equivalent(file, file_of.at(declaration.name)))
+      throw InputError("--algo " + module_name, 0,
+                       "two declarations are both named " + declaration.name + ": " + file_of.at(declaration.name) +
+                           " and " + file,
+                       "rename one file (the module's name is the file name)");
+    info = it->second;
+  } else {
+    info = &loaded.emplace_back(ExecModuleInfo(declaration));
+    file_of[declaration.name] = file;
+  }
   by_name[declaration.name] = info;
   by_name[module_name] = info;
   return *info;

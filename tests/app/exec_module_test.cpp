@@ -181,6 +181,12 @@ TEST(ExecModule, BadDeclarationsAndNamesAreClearErrors) {
   std::ofstream(dir / "typo.yaml") << "version: 1\ncommand: [/bin/true]\ncomand: [x]\n";
   const auto typo = Slambox("run loop --set duration_s=2 --algo exec:" + (dir / "typo.yaml").string() + " -o " + (dir / "o").string());
   EXPECT_NE(typo.output.find("typo.yaml:3: unknown key 'comand'"), std::string::npos) << typo.output;
+  fs::create_directories(dir / "other");
+  fs::copy_file(kExample, dir / "other" / "py-odometry.yaml");
+  const auto clash = Slambox("run loop --set duration_s=2 --algo exec:" + kExample + ",exec:" +
+                             (dir / "other" / "py-odometry.yaml").string() + " -o " + (dir / "o").string());
+  EXPECT_EQ(clash.code, 2);
+  EXPECT_NE(clash.output.find("two declarations are both named exec:py-odometry"), std::string::npos) << clash.output;
   std::ofstream(dir / "nocmd.yaml") << "version: 1\ncommand: [/nonexistent/program]\nneeds: [odometry]\n";
   const auto nocmd = Slambox("run loop --set duration_s=2 --algo odometry,exec:" + (dir / "nocmd.yaml").string() +
                              " --no-figures -q -o " + (dir / "o").string());
