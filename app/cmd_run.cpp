@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "app/exec_module.hpp"
 #include "app/run.hpp"
 
 namespace slambox {
@@ -19,9 +20,13 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("-o,--output", request->output_dir, "output folder")->required();
   cmd->add_flag("--no-figures", [request](std::int64_t) { request->figures = false; }, "skip figures");
   cmd->add_flag("-q,--quiet", request->quiet, "no progress on stderr");
+  auto inline_modules = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--exec", *inline_modules,
+                  "declare an exec module NAME[:NEED,...]=COMMAND, run as --algo exec:NAME (docs/exec_protocol.md)");
   cmd->add_flag("--skip-unavailable", request->skip_unavailable,
                 "skip listed modules whose sensors the stream lacks (instead of an error)");
-  cmd->callback([request] {
+  cmd->callback([request, inline_modules] {
+    for (const auto& m : *inline_modules) DeclareExecModule(ParseInlineDeclaration(m));
     if (request->algorithms.empty()) request->algorithms = {"odometry"};
     const auto doc = RunAndWrite(*request);
     int bad = 0;

@@ -68,6 +68,18 @@ namespace {
 
 int Line(const YAML::Node& n) { return n.Mark().line + 1; }
 
+constexpr const char* kNeedsFix = "use odometry, lidar, landmarks or map";
+
+/// Sets the need named `name`; false for an unknown name.
+bool AddNeed(const std::string& name, SensorNeeds& needs) {
+  if (name == "odometry") needs.odometry = true;
+  else if (name == "lidar") needs.lidar = true;
+  else if (name == "landmarks") needs.landmarks = true;
+  else if (name == "map") needs.map = true;
+  else return false;
+  return true;
+}
+
 }  // namespace
 
 ExecDeclaration LoadExecDeclaration(const std::string& path) {
@@ -107,11 +119,7 @@ ExecDeclaration LoadExecDeclaration(const std::string& path) {
         if (!v.IsSequence()) fail(v, "'needs' must be a list", "write e.g. needs: [odometry, lidar]");
         for (const auto& n : v) {
           const std::string s = n.as<std::string>();
-          if (s == "odometry") d.needs.odometry = true;
-          else if (s == "lidar") d.needs.lidar = true;
-          else if (s == "landmarks") d.needs.landmarks = true;
-          else if (s == "map") d.needs.map = true;
-          else fail(n, "unknown sensor need '" + s + "'", "use odometry, lidar, landmarks or map");
+          if (!AddNeed(s, d.needs)) fail(n, "unknown sensor need '" + s + "'", kNeedsFix);
         }
       } else if (key == "idle_timeout_s") {
         d.idle_timeout_s = v.as<double>();
@@ -163,6 +171,31 @@ ExecDeclaration LoadExecDeclaration(const std::string& path) {
   return d;
 }
 
+
+ExecDeclaration ParseInlineDeclaration(const std::string& argument) {
+  const std::string where = "--exec " + argument;
+  const std::string how = "write --exec NAME[:NEED,...]=COMMAND, e.g. --exec 'mine:odometry,lidar=python3 mine.py'";
+  const auto eq = argument.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == argument.size())
+    throw InputError(where, 0, "expected NAME[:NEED,...]=COMMAND", how);
+  std::string name = argument.substr(0, eq), needs = "odometry";
+  if (const auto colon = name.find(':'); colon != std::string::npos) {
+    needs = name.substr(colon + 1);
+    name = name.substr(0, colon);
+  }
+  if (name.empty() || name.find_first_of("/ ,") != std::string::npos)
+    throw InputError(where, 0, "a module name without '/', ' ' or ','", how);
+  ExecDeclaration d;
+  d.name = "exec:" + name;
+  d.file = "--exec " + name;
+  d.description = "exec module from the command line: " + argument.substr(eq + 1);
+  d.command = {"/bin/sh", "-c", argument.substr(eq + 1)};
+  d.needs = SensorNeeds{.odometry = false};
+  std::stringstream in(needs);
+  for (std::string n; std::getline(in, n, ',');)
+    if (!AddNeed(n, d.needs)) throw InputError(where, 0, "unknown sensor need '" + n + "'", kNeedsFix);
+  return d;
+}
 
 std::vector<std::string> ExecPathFolders() {
   std::vector<std::string> folders;

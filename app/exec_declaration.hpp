@@ -33,6 +33,10 @@ struct ExecDeclaration {
 
 /// Parses a declaration file; throws InputError with the file, line and fix.
 ExecDeclaration LoadExecDeclaration(const std::string& path);
+/// A declaration on the command line, `--exec NAME[:NEED,...]=COMMAND`: COMMAND runs with
+/// /bin/sh -c in the current folder; needs default to odometry; no parameters. Throws
+/// InputError naming the argument.
+ExecDeclaration ParseInlineDeclaration(const std::string& argument);
 /// The folders of $SLAMBOX_EXEC_PATH (`:`-separated), in order.
 std::vector<std::string> ExecPathFolders();
 /// The declaration file of `exec:NAME` (NAME.yaml in $SLAMBOX_EXEC_PATH's folders, then

@@ -135,31 +135,57 @@ ModuleInfo ExecModuleInfo(const ExecDeclaration& declaration) {
 }
 
 
-const ModuleInfo& FindExecModule(const std::string& module_name) {
-  static std::mutex mutex;
-  static std::deque<ModuleInfo> loaded;                 // stable references
-  static std::map<std::string, const ModuleInfo*> by_name;  // canonical and as-asked names
-  static std::map<std::string, std::string> file_of;         // canonical name -> declaration file
-  const std::lock_guard lock(mutex);
-  if (const auto it = by_name.find(module_name); it != by_name.end()) return *it->second;
-  const std::string file = FindExecDeclaration(module_name);
-  const ExecDeclaration declaration = LoadExecDeclaration(file);
+namespace {
+
+/// Every exec module loaded so far (declaration files, `--exec` on the command line).
+struct ExecModuleCache {
+  std::mutex mutex;
+  std::deque<ModuleInfo> loaded;                    // stable references
+  std::map<std::string, const ModuleInfo*> by_name;  // canonical and as-asked names
+  std::map<std::string, std::string> file_of;        // canonical name -> declaration file
+};
+
+ExecModuleCache& Cache() {
+  static ExecModuleCache cache;
+  return cache;
+}
+
+/// Adds `declaration` (caller holds the lock); a second, different one of that name is an error.
+const ModuleInfo* Add(ExecModuleCache& c, const ExecDeclaration& declaration, const std::string& asked_as) {
   const ModuleInfo* info = nullptr;
-  if (const auto it = by_name.find(declaration.name); it != by_name.end()) {
-    if (!fs::equivalent(file, file_of.at(declaration.name)))
-      throw InputError("--algo " + module_name, 0,
-                       "two declarations are both named " + declaration.name + ": " + file_of.at(declaration.name) +
-                           " and " + file,
-                       "rename one file (the module's name is the file name)");
+  if (const auto it = c.by_name.find(declaration.name); it != c.by_name.end()) {
+    const std::string& known = c.file_of.at(declaration.name);
+    const bool same = known == declaration.file ||
+                      (fs::exists(known) && fs::exists(declaration.file) && fs::equivalent(known, declaration.file));
+    if (!same)
+      throw InputError(asked_as, 0,
+                       "two declarations are both named " + declaration.name + ": " + known + " and " +
+                           declaration.file,
+                       "rename one (a file's module name is its file name)");
     info = it->second;
   } else {
-    info = &loaded.emplace_back(ExecModuleInfo(declaration));
-    file_of[declaration.name] = file;
+    info = &c.loaded.emplace_back(ExecModuleInfo(declaration));
+    c.file_of[declaration.name] = declaration.file;
   }
-  by_name[declaration.name] = info;
-  by_name[module_name] = info;
+  c.by_name[declaration.name] = info;
+  return info;
+}
+
+}  // namespace
+
+const ModuleInfo& FindExecModule(const std::string& module_name) {
+  ExecModuleCache& c = Cache();
+  const std::lock_guard lock(c.mutex);
+  if (const auto it = c.by_name.find(module_name); it != c.by_name.end()) return *it->second;
+  const ModuleInfo* info = Add(c, LoadExecDeclaration(FindExecDeclaration(module_name)), "--algo " + module_name);
+  c.by_name[module_name] = info;
   return *info;
 }
 
+void DeclareExecModule(const ExecDeclaration& declaration) {
+  ExecModuleCache& c = Cache();
+  const std::lock_guard lock(c.mutex);
+  Add(c, declaration, "--exec " + declaration.name);
+}
 
 }  // namespace slambox

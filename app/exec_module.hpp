@@ -16,5 +16,7 @@ std::vector<const ModuleInfo*> ExecModulesOnPath();
 /// The registry's resolver for `exec:` names: loads each declaration once and keeps it,
 /// under its canonical name and the name it was asked by.
 const ModuleInfo& FindExecModule(const std::string& module_name);
+/// Makes a declaration from the command line (`--exec`) findable as its name.
+void DeclareExecModule(const ExecDeclaration& declaration);
 
 }  // namespace slambox

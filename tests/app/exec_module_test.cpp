@@ -207,6 +207,18 @@ TEST(ExecModule, AlgorithmsListsTheDeclarationsOnTheExecPath) {
   EXPECT_NE(p.output.find("algo.exec:py-odometry.noise_scale  double  1"), std::string::npos) << p.output;
 }
 
+TEST(ExecModule, DeclaredOnTheCommandLine) {
+  const fs::path dir = TempDir("inline");
+  const auto r = Slambox("run loop --set duration_s=10 --algo odometry,exec:mine --exec 'mine:odometry=/usr/bin/python3 " +
+                         kSource + "/examples/python/dead_reckoning.py' --no-figures -q -o " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const json m = ReadJson(dir / "metrics.json")["algorithms"];
+  EXPECT_EQ(WithoutTimings(m["exec:mine"]), WithoutTimings(m["odometry"]));
+  const auto bad = Slambox("run loop --set duration_s=2 --algo exec:mine --exec 'mine:sonar=true' -o " + dir.string());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("unknown sensor need 'sonar'"), std::string::npos) << bad.output;
+}
+
 TEST(ExecModule, ConformanceCheckPassesTheExampleAndFailsBrokenChildren) {
   const auto ok = Slambox("exec-check " + kExample);
   EXPECT_EQ(ok.code, 0) << ok.output;
