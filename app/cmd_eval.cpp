@@ -1,6 +1,8 @@
 // `slambox eval --gt GT.tum --est EST.tum`: scores any TUM trajectory against another
 // (also files from other tools; 3D files are reduced to x, y and yaw) with the same
 // evaluator `slambox run` uses. --json prints one algorithm's metrics.json entry.
+// `--relations FILE` (with or without --gt) scores it on Kümmerle relations; their times
+// are the log's clock, mapped by `--stream` (a converted log's header) or `--time-origin-s`.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -9,6 +11,7 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "core/stream_io.hpp"
 #include "core/tum.hpp"
 #include "eval/evaluate.hpp"
 
@@ -26,6 +29,11 @@ struct EvalArgs {
   double t_max_diff_s = 0.01;
   bool interpolate = false;
   bool json = false;
+  std::string relations_path;
+  std::string stream_path;       ///< the converted log, for its time origin
+  double time_origin_s = 0.0;
+  bool time_origin_given = false;
+  double relation_max_diff_s = RelationMatchOptions{}.max_time_diff_s;
 };
 
 EvalOptions ToOptions(const EvalArgs& a) {
@@ -47,6 +55,26 @@ EvalOptions ToOptions(const EvalArgs& a) {
   o.rpe.pairs_from_reference = a.pairs_from_reference;
   o.max_time_diff_s = a.t_max_diff_s;
   o.interpolate_groundtruth = a.interpolate;
+  if (a.relations_path.empty()) {
+    if (!a.stream_path.empty() || a.time_origin_given)
+      throw InputError(a.stream_path.empty() ? "--time-origin-s" : "--stream", 0, "only used with --relations",
+                       "add --relations FILE or drop it");
+    return o;
+  }
+  if (!a.stream_path.empty() && a.time_origin_given)
+    throw InputError("--time-origin-s", 0, "--stream already gives the time origin", "give one of them");
+  if (!(a.relation_max_diff_s >= 0.0))
+    throw InputError("--relation-t-max-diff", 0, "must be >= 0", "give e.g. 0.005");
+  o.relations = ReadRelations(a.relations_path);
+  o.relation_matching.max_time_diff_s = a.relation_max_diff_s;
+  o.relation_matching.time_origin_s = a.time_origin_s;
+  if (!a.stream_path.empty()) {
+    const StreamHeader h = ReadStreamHeader(a.stream_path);
+    if (!h.time_origin_s)
+      throw InputError(a.stream_path, 0, "the stream records no time origin (simulated, or converted by an older slambox)",
+                       "re-convert the log with `slambox convert carmen LOG -o STREAM`, or give --time-origin-s");
+    o.relation_matching.time_origin_s = *h.time_origin_s;
+  }
   return o;
 }
 
@@ -83,13 +111,20 @@ void PrintTable(const nlohmann::json& m, std::ostream& out) {
   row("segments", "kitti_segments", "");
   row("translation", "kitti_trans_percent", "%");
   row("rotation", "kitti_rot_deg_per_m", "deg/m");
+  out << "Relations (Kümmerle et al. 2009)\n";
+  row("relations", "relation_count", "");
+  row("unmatched", "relation_unmatched", "");
+  row("translation mean", "relation_trans_mean_m", "m");
+  row("translation std", "relation_trans_std_m", "m");
+  row("rotation mean", "relation_rot_mean_deg", "deg");
+  row("rotation std", "relation_rot_std_deg", "deg");
 }
 }  // namespace
 
 void AddEvalCommand(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
   CLI::App* cmd = app.add_subcommand("eval", "score an estimated TUM trajectory against ground truth (evo's definitions)");
-  cmd->add_option("--gt", args->gt_path, "ground-truth trajectory (TUM: t x y z qx qy qz qw)")->required();
+  cmd->add_option("--gt", args->gt_path, "ground-truth trajectory (TUM: t x y z qx qy qz qw); needs --gt or --relations");
   cmd->add_option("--est", args->est_path, "estimated trajectory (TUM)")->required();
   cmd->add_option("--align", args->align,
                   "alignment before ate_*: none (default), se2 (Umeyama, evo -a) or origin (evo --align_origin)");
@@ -101,20 +136,36 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_option("--t-max-diff", args->t_max_diff_s, "max. timestamp difference for matching [s] (default 0.01)");
   cmd->add_flag("--interpolate", args->interpolate, "interpolate ground truth at the estimate's timestamps");
   cmd->add_flag("--json", args->json, "print the metrics as JSON (the keys of one metrics.json entry)");
+  cmd->add_option("--relations", args->relations_path,
+                  "Kümmerle relations file (t_i t_j dx dy dz roll pitch dtheta, the log's clock): relation_* on it");
+  cmd->add_option("--stream", args->stream_path, "the converted log the estimate came from: its time origin maps the relations");
+  cmd->add_option("--time-origin-s", args->time_origin_s, "the log's clock at estimate time 0 [s] (default 0: the estimate uses the log's clock)")
+      ->each([args](const std::string&) { args->time_origin_given = true; });
+  cmd->add_option("--relation-t-max-diff", args->relation_max_diff_s,
+                  "max. distance from a relation time to the nearest estimate pose [s] (default 0.005)");
   cmd->callback([args] {
+    if (args->gt_path.empty() && args->relations_path.empty())
+      throw InputError("--gt", 0, "nothing to score against", "give --gt GT.tum, --relations FILE, or both");
     const EvalOptions options = ToOptions(*args);
     GroundTruth gt;
-    gt.trajectory = ReadTum(args->gt_path);
-    if (gt.trajectory.empty()) throw InputError(args->gt_path, 0, "no pose in the file", "give a non-empty TUM file");
+    if (!args->gt_path.empty()) {
+      gt.trajectory = ReadTum(args->gt_path);
+      if (gt.trajectory.empty()) throw InputError(args->gt_path, 0, "no pose in the file", "give a non-empty TUM file");
+    }
     Estimate est;
     for (const auto& p : ReadTum(args->est_path)) est.trajectory.push_back({p.t_s, p.pose, Eigen::Matrix3d::Zero(), false});
     if (est.trajectory.empty())
       throw InputError(args->est_path, 0, "no pose in the file", "give a non-empty TUM file");
     const Evaluation ev = EvaluateEstimate(gt, est, options);
-    if (ev.metrics["matched_poses"].get<size_t>() == 0)
+    if (!args->gt_path.empty() && ev.metrics["matched_poses"].get<size_t>() == 0)
       throw InputError(args->est_path, 0,
                        "no timestamp matches the ground truth within " + std::to_string(args->t_max_diff_s) + " s",
                        "check that both files use the same clock, or raise --t-max-diff / use --interpolate");
+    if (!options.relations.empty() && ev.metrics["relation_count"].get<int>() == 0)
+      throw InputError(args->est_path, 0,
+                       "no relation time has an estimate pose within " + std::to_string(args->relation_max_diff_s) +
+                           " s (time origin " + std::to_string(options.relation_matching.time_origin_s) + " s)",
+                       "give --stream STREAM (the converted log) or --time-origin-s, or the relations of this log");
     if (args->json)
       std::cout << ev.metrics.dump(2) << "\n";
     else

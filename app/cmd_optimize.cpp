@@ -1,12 +1,14 @@
 // `slambox optimize GRAPH [-o OUT.g2o] [--robust none|huber|cauchy|dcs] [--init ...] [--json]`:
 // read a g2o / TORO 2D pose graph, initialize, solve with Ceres, report chi2 before/after.
 // --json keeps the documented key order (DESIGN.md), then adds init, robust and counts.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
@@ -17,27 +19,70 @@
 namespace slambox {
 namespace {
 
+enum class InitMethod { kAuto, kFile, kLago, kOdometry };
+const std::map<std::string, InitMethod> kInitMethods = {
+    {"auto", InitMethod::kAuto}, {"file", InitMethod::kFile}, {"lago", InitMethod::kLago}, {"odometry", InitMethod::kOdometry}};
+
+std::string InitName(InitMethod m) {
+  for (const auto& [name, method] : kInitMethods)
+    if (method == m) return name;
+  return "?";
+}
+
 struct OptimizeArgs {
   std::string graph_path;
   std::string out_path;
   std::string robust = "none";
-  std::string init = "auto";
+  InitMethod init = InitMethod::kAuto;
   double kernel_scale = 1.0;
   int max_iterations = 100;
   int threads = 1;
   bool json = false;
 };
 
-// Replaces the poses with the chosen initial guess; returns the method actually used.
-std::string Initialize(PoseGraphFile& file, const std::string& init, const std::string& path) {
-  std::string method = init;
-  if (method == "auto") method = file.has_initial_guess ? "file" : "lago";
-  if (method == "file" && !file.has_initial_guess)
+// One initial guess solved: the method, its cost and the solution.
+struct InitAttempt {
+  InitMethod init;
+  double init_time_s = 0.0;
+  PoseGraph graph;
+  PoseGraphSolveResult result;
+};
+
+InitAttempt SolveFrom(const PoseGraphFile& file, InitMethod method, const PoseGraphSolveOptions& options) {
+  InitAttempt a{method, 0.0, file.graph, {}};
+  const auto t0 = std::chrono::steady_clock::now();
+  if (method == InitMethod::kOdometry) a.graph.poses = SpanningTreeInitialization(a.graph);
+  if (method == InitMethod::kLago) a.graph.poses = LagoInitialization(a.graph);
+  a.init_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  a.result = SolvePoseGraph(a.graph, options);
+  return a;
+}
+
+// `auto` keeps the attempt that converged to the lowest chi2 (usable before not usable,
+// converged before stalled); within 1e-6 relative (Ceres' default function_tolerance, at
+// which each solve stops: the same optimum) the earlier of file, lago, odometry wins.
+bool Better(const InitAttempt& a, const InitAttempt& b) {
+  const auto rank = [](const PoseGraphSolveResult& r) { return (r.usable ? 2 : 0) + (r.termination == "CONVERGENCE"); };
+  if (rank(a.result) != rank(b.result)) return rank(a.result) > rank(b.result);
+  return a.result.chi2_final < b.result.chi2_final * (1.0 - 1e-6);
+}
+
+// The requested initial guess solved; for `auto` every cheap one (the file's guess, LAGO,
+// the odometry chain: milliseconds each), the best kept and the others listed.
+std::vector<InitAttempt> SolveWithInit(const PoseGraphFile& file, InitMethod init, const std::string& path,
+                                       const PoseGraphSolveOptions& options) {
+  if (init == InitMethod::kFile && !file.has_initial_guess)
     throw InputError(path, 0, "--init file, but the file has no VERTEX_SE2 / VERTEX2 lines (edges only)",
                      "use --init lago (or odometry) to compute an initial guess");
-  if (method == "odometry") file.graph.poses = SpanningTreeInitialization(file.graph);
-  if (method == "lago") file.graph.poses = LagoInitialization(file.graph);
-  return method;
+  if (init != InitMethod::kAuto) return {SolveFrom(file, init, options)};
+  std::vector<InitAttempt> attempts;
+  for (const InitMethod method : {InitMethod::kFile, InitMethod::kLago, InitMethod::kOdometry})
+    if (method != InitMethod::kFile || file.has_initial_guess) attempts.push_back(SolveFrom(file, method, options));
+  size_t best = 0;
+  for (size_t i = 1; i < attempts.size(); ++i)
+    if (Better(attempts[i], attempts[best])) best = i;
+  std::rotate(attempts.begin(), attempts.begin() + static_cast<long>(best), attempts.begin() + static_cast<long>(best) + 1);
+  return attempts;  // the chosen one first
 }
 
 void RunOptimize(const OptimizeArgs& args) {
@@ -49,20 +94,21 @@ void RunOptimize(const OptimizeArgs& args) {
   int loop_edges = 0;
   for (const PoseGraphEdge& e : file.graph.edges) loop_edges += e.loop_closure ? 1 : 0;
 
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::string init = Initialize(file, args.init, args.graph_path);
-  const double init_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
   PoseGraphSolveOptions options;
   options.loop_kernel = kernels.at(args.robust);
   options.kernel_scale = args.kernel_scale;
   options.max_iterations = args.max_iterations;
   options.num_threads = args.threads;
   // ReadPoseGraph has already rejected edges to unknown vertices and non-PD information.
-  const PoseGraphSolveResult result = SolvePoseGraph(file.graph, options);
+  const std::vector<InitAttempt> attempts = SolveWithInit(file, args.init, args.graph_path, options);
+  const InitAttempt& chosen = attempts.front();
+  const std::string init = InitName(chosen.init);
+  const PoseGraphSolveResult& result = chosen.result;
+  file.graph = chosen.graph;
+  double init_time_s = 0.0, time_s = 0.0;  // every attempt counts: auto pays for all of them
+  for (const InitAttempt& a : attempts) init_time_s += a.init_time_s, time_s += a.init_time_s + a.result.time_s;
   int downweighted = 0;
   for (double w : result.edge_weights) downweighted += w < 0.5 ? 1 : 0;
-  const double time_s = init_time_s + result.time_s;
 
   if (!args.out_path.empty() && result.usable) WritePoseGraph(args.out_path, file.graph, file.vertex_ids);
 
@@ -75,16 +121,32 @@ void RunOptimize(const OptimizeArgs& args) {
                         {"time_s", time_s},
                         {"termination", result.termination},
                         {"init", init},
+                        {"init_requested", InitName(args.init)},
                         {"init_time_s", init_time_s},
                         {"robust", args.robust},
                         {"loop_closures", loop_edges},
                         {"loop_closures_downweighted", downweighted}};
+    nlohmann::ordered_json tried = nlohmann::ordered_json::array();
+    for (const InitAttempt& a : attempts)
+      tried.push_back({{"init", InitName(a.init)},
+                       {"chi2_initial", a.result.chi2_initial},
+                       {"chi2_final", a.result.chi2_final},
+                       {"iterations", a.result.iterations},
+                       {"termination", a.result.termination}});
+    j["init_attempts"] = tried;
     std::cout << j.dump(2) << "\n";
   } else {
     std::printf("graph         %s\n", args.graph_path.c_str());
     std::printf("vertices      %zu\n", file.graph.poses.size());
     std::printf("edges         %zu (%d loop closures)\n", file.graph.edges.size(), loop_edges);
     std::printf("init          %s (%.3f s)\n", init.c_str(), init_time_s);
+    if (attempts.size() > 1) {
+      std::printf("auto tried   ");
+      for (const InitAttempt& a : attempts)
+        std::printf(" %s: chi2 %.6g in %d iterations (%s);", InitName(a.init).c_str(), a.result.chi2_final, a.result.iterations,
+                    a.result.termination.c_str());
+      std::printf("\n");
+    }
     std::printf("robust        %s", args.robust.c_str());
     if (args.robust != "none") std::printf(" (%d loop closures down-weighted below 0.5)", downweighted);
     std::printf("\nchi2_initial  %.6f\n", result.chi2_initial);
@@ -116,10 +178,10 @@ void AddOptimizeCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--init", args->init,
-                  "initial guess: file (VERTEX lines), odometry (spanning tree), lago; auto = file if it has "
-                  "vertices, else lago")
-      ->check(CLI::IsMember({"auto", "file", "odometry", "lago"}))
-      ->capture_default_str();
+                  "initial guess: file (VERTEX lines), odometry (spanning tree), lago; auto = solve from each "
+                  "(file only if it has vertices) and keep the lowest converged chi2")
+      ->transform(CLI::CheckedTransformer(kInitMethods, CLI::ignore_case).description("{auto,file,lago,odometry}"))
+      ->default_str("auto");
   cmd->add_option("--max-iterations", args->max_iterations, "Levenberg-Marquardt iteration cap")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -20,6 +20,8 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("-o,--output", request->output_dir, "output folder")->required();
   cmd->add_flag("--no-figures", [request](std::int64_t) { request->figures = false; }, "skip figures");
   cmd->add_flag("-q,--quiet", request->quiet, "no progress on stderr");
+  cmd->add_option("--relations", request->relations_path,
+                  "Kümmerle relations file of the log (t_i t_j dx dy dz roll pitch dtheta): relation_* on it");
   auto inline_modules = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--exec", *inline_modules,
                   "declare an exec module NAME[:NEED,...]=COMMAND, run as --algo exec:NAME (docs/exec_protocol.md)");

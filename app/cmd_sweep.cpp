@@ -18,6 +18,8 @@
 #include "app/sweep_summary.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/stream_io.hpp"
+#include "eval/relations.hpp"
 #include "render/figures_sweep.hpp"
 #include "render/report.hpp"
 #include "sim/scenario.hpp"
@@ -57,8 +59,11 @@ void Validate(const SweepSpec& spec, const std::vector<SweepRun>& runs) {
     for (const auto& s : run.sets) key += "\n" + s;
     if (!seen.insert(key).second) continue;
     const Overrides o = SplitOverrides(run.sets);
-    const Scenario scenario = LoadScenario(run.scenario, o.scenario);
-    ResolveAlgorithms(spec.algorithms, scenario.sensors, /*skip_unavailable=*/true);  // throws if none applies
+    // A stream (e.g. a converted log) has its sensors in its header; a scenario in its file.
+    const SensorSuite sensors =
+        run.is_stream ? ReadStreamHeader(run.scenario).sensors : LoadScenario(run.scenario, o.scenario).sensors;
+    ResolveAlgorithms(spec.algorithms, sensors, /*skip_unavailable=*/true);  // throws if none applies
+    if (!run.relations.empty()) ReadRelations(run.relations);  // a malformed file fails before any run
     for (const auto& [name, params] : o.algo) FindModule(name).create(params);
   }
 }

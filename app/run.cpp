@@ -120,18 +120,33 @@ json RunAndWrite(const RunRequest& request) {
 
   const bool progress = !request.quiet && isatty(STDERR_FILENO);
   const fs::path dir(request.output_dir);
-  fs::create_directories(dir);
   const GroundTruth gt{stream.groundtruth, stream.header.world};
   EvalOptions options;
   // With unknown ids a module's landmark ids are its own indices: match by assignment.
   const auto& lm = stream.header.sensors.landmarks;
   options.landmarks.matching = lm && lm->known_ids ? LandmarkMatching::kById : LandmarkMatching::kOptimal;
+  if (!request.relations_path.empty()) {
+    options.relations = ReadRelations(request.relations_path);
+    options.relation_matching.time_origin_s = stream.header.time_origin_s.value_or(0.0);
+    if (RelationsWithin(options.relations, stream.header.duration_s, options.relation_matching) == 0)
+      throw InputError(request.relations_path, 0,
+                       "no relation falls within the stream's time span (time origin " +
+                           std::to_string(options.relation_matching.time_origin_s) + " s, " +
+                           std::to_string(stream.header.duration_s) + " s long)",
+                       stream.header.time_origin_s ? "give the relations file of this log"
+                                                   : "the stream records no time origin: re-convert the log with "
+                                                     "`slambox convert carmen LOG -o STREAM`");
+  }
+  fs::create_directories(dir);
   json doc;
   doc["slambox_version"] = kVersion;
   doc["scenario"] = stream.header.scenario_name;
   doc["seed"] = stream.header.seed;
   doc["duration_s"] = stream.header.duration_s;
   doc["distance_m"] = PathLength(stream.groundtruth);
+  // A converted log's clock at t = 0 (for `eval --relations ... --time-origin-s`), and the relations used.
+  if (stream.header.time_origin_s) doc["time_origin_s"] = *stream.header.time_origin_s;
+  if (!request.relations_path.empty()) doc["relations_file"] = request.relations_path;
   doc["algorithms"] = json::object();
   WriteTum((dir / "groundtruth.tum").string(), stream.groundtruth);
   WriteJson(dir / "world.json", {{"scenario", stream.header.scenario_name},

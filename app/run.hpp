@@ -38,6 +38,9 @@ struct RunRequest {
   bool figures = true;
   bool quiet = false;  ///< no progress lines on stderr
   bool skip_unavailable = false;  ///< skip named modules whose sensors the stream lacks
+  /// Kümmerle relations file (the log's clock, mapped by the stream's time origin): when
+  /// given, relation_* score every module on it.
+  std::string relations_path;
 };
 
 /// Runs and writes the run folder; returns the metrics.json document.

@@ -49,9 +49,10 @@ std::string Join(const std::vector<std::string>& v, const std::string& sep) {
 pid_t Launch(const SweepRun& run, const ExecOptions& o) {
   const std::string dir = RunDir(o.out_dir, run);
   fs::create_directories(dir);
-  std::vector<std::string> args = {o.worker_exe, "run", run.scenario, "--seed", std::to_string(run.seed),
-                                   "--algo", Join(o.algorithms, ","), "-o", dir, "--no-figures", "-q",
-                                   "--skip-unavailable"};
+  std::vector<std::string> args = {o.worker_exe, "run", run.scenario, "--algo", Join(o.algorithms, ","), "-o", dir,
+                                   "--no-figures", "-q", "--skip-unavailable"};
+  if (!run.is_stream) args.insert(args.end(), {"--seed", std::to_string(run.seed)});
+  if (!run.relations.empty()) args.insert(args.end(), {"--relations", run.relations});
   for (const auto& s : run.sets) {
     args.push_back("--set");
     args.push_back(s);
@@ -76,7 +77,8 @@ pid_t Launch(const SweepRun& run, const ExecOptions& o) {
       RunRequest request;
       request.input = run.scenario;
       request.seed = run.seed;
-      request.seed_given = true;
+      request.seed_given = !run.is_stream;
+      request.relations_path = run.relations;
       request.sets = run.sets;
       request.algorithms = o.algorithms;
       request.output_dir = dir;

@@ -2,10 +2,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <set>
 
 #include "core/error.hpp"
+#include "core/stream_io.hpp"
 #include "core/version.hpp"
 
 namespace slambox {
@@ -33,6 +36,13 @@ std::string ScalarText(const YAML::Node& n, const std::string& file, const std::
   return e.c_str();
 }
 
+std::vector<std::string> SweptAndSetKeys(const SweepSpec& spec) {
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : spec.fixed) keys.push_back(k);
+  for (const auto& [k, v] : spec.grid) keys.push_back(k);
+  return keys;
+}
+
 }  // namespace
 
 SweepSpec LoadSweepSpec(const std::string& path) {
@@ -47,12 +57,12 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   if (!root.IsMap()) throw InputError(path, 1, "a sweep file is a YAML map", "see DESIGN.md: scenarios, algorithms, seeds, grid");
   SweepSpec spec;
   spec.source = path;
-  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s"};
+  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations"};
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (!known.count(key))
       throw InputError(path, Line(kv.first), "unknown key '" + key + "'",
-                       "use scenarios, algorithms, seeds, grid, set, timeout_s");
+                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations");
   }
   for (const char* required : {"scenarios", "algorithms", "seeds"})
     if (!root[required]) throw InputError(path, 1, std::string("missing '") + required + "'", std::string("add ") + required + ":");
@@ -98,13 +108,38 @@ SweepSpec LoadSweepSpec(const std::string& path) {
     }
     if (!(spec.timeout_s > 0)) throw InputError(path, Line(t), "timeout_s must be a positive number", "write timeout_s: 600");
   }
+  if (const YAML::Node rel = root["relations"]) {
+    if (!rel.IsMap())
+      throw InputError(path, Line(rel), "'relations' must map scenario entries to relations files",
+                       "write relations: {intel.stream: intel.relations}");
+    for (const auto& kv : rel) {
+      const std::string entry = kv.first.Scalar();
+      if (std::find(spec.scenarios.begin(), spec.scenarios.end(), entry) == spec.scenarios.end())
+        throw InputError(path, Line(kv.first), "relations for '" + entry + "', which is not in 'scenarios'",
+                         "use the scenario entry exactly as listed in scenarios:");
+      if (!kv.second.IsScalar() || !std::filesystem::is_regular_file(kv.second.Scalar()))
+        throw InputError(path, Line(kv.second), "relations file '" + ScalarText(kv.second, path, entry) + "' not found",
+                         "give the path of a relations file (relative to the working folder)");
+      spec.relations.emplace_back(entry, kv.second.Scalar());
+    }
+  }
+  // A stream is already simulated: scenario overrides cannot apply to it.
+  for (const auto& scenario : spec.scenarios) {
+    if (!std::filesystem::is_regular_file(scenario) || !IsStreamFile(scenario)) continue;
+    for (const auto& key : SweptAndSetKeys(spec))
+      if (key.rfind("algo.", 0) != 0)
+        throw InputError(path, 1, "'" + key + "' is a scenario key and '" + scenario + "' is a stream file",
+                         "set only algo.NAME.FIELD keys in a sweep over streams, or list scenarios instead");
+  }
   return spec;
 }
 
-std::string RunId(const std::string& scenario, const std::vector<std::string>& sets, std::uint64_t seed) {
+std::string RunId(const std::string& scenario, const std::vector<std::string>& sets, std::uint64_t seed,
+                  const std::string& relations) {
   std::string canonical = std::string("slambox ") + kVersion + "\nscenario " + scenario + "\nseed " +
                           std::to_string(seed) + "\n";
   for (const auto& s : sets) canonical += "set " + s + "\n";
+  if (!relations.empty()) canonical += "relations " + relations + "\n";
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a 64
   for (unsigned char c : canonical) {
     h ^= c;
@@ -120,6 +155,11 @@ std::vector<SweepRun> ExpandSweep(const SweepSpec& spec) {
   for (const auto& [key, values] : spec.grid) points *= values.size();
   std::vector<SweepRun> runs;
   for (const auto& scenario : spec.scenarios) {
+    const bool is_stream = std::filesystem::is_regular_file(scenario) && IsStreamFile(scenario);
+    std::string relations;
+    for (const auto& [entry, file] : spec.relations)
+      if (entry == scenario) relations = file;
+    const std::vector<std::uint64_t> seeds = is_stream ? std::vector<std::uint64_t>{0} : spec.seeds;
     for (std::size_t p = 0; p < points; ++p) {
       // Mixed-radix digits of p, last grid key fastest.
       std::vector<std::pair<std::string, std::string>> values(spec.grid.size());
@@ -129,15 +169,17 @@ std::vector<SweepRun> ExpandSweep(const SweepSpec& spec) {
         values[k] = {key, options[rest % options.size()]};
         rest /= options.size();
       }
-      for (std::uint64_t seed : spec.seeds) {
+      for (std::uint64_t seed : seeds) {
         SweepRun run;
+        run.is_stream = is_stream;
+        run.relations = relations;
         run.index = runs.size();
         run.scenario = scenario;
         run.seed = seed;
         run.grid_values = values;
         for (const auto& [k, v] : spec.fixed) run.sets.push_back(k + "=" + v);
         for (const auto& [k, v] : values) run.sets.push_back(k + "=" + v);
-        run.id = RunId(scenario, run.sets, seed);
+        run.id = RunId(scenario, run.sets, seed, relations);
         runs.push_back(std::move(run));
       }
     }

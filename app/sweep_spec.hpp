@@ -7,8 +7,11 @@
 //     sensors.lidar.sigma_range_m: [0.01, 0.05]
 //   set: {robot.laps: 1}               # optional: fixed overrides for every run
 //   timeout_s: 600                     # optional: a run taking longer is killed, recorded failed
+//   relations: {intel.stream: intel.relations}  # optional: Kümmerle relations per scenario entry
 // A run = one scenario x one grid point x one seed; it simulates its stream once and
-// replays it to every algorithm.
+// replays it to every algorithm. A `scenarios` entry may be a stream file (e.g. a
+// converted log): it is already simulated, so it is run once per grid point (seed 0 in
+// results) and only algo.NAME.FIELD keys may be set or swept.
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -24,6 +27,7 @@ struct SweepSpec {
   std::vector<std::pair<std::string, std::vector<std::string>>> grid;  ///< key -> values (YAML text), file order
   std::vector<std::pair<std::string, std::string>> fixed;              ///< `set:` key -> value
   double timeout_s = 1800.0;
+  std::vector<std::pair<std::string, std::string>> relations;  ///< scenario entry -> relations file
 };
 
 struct SweepRun {
@@ -33,6 +37,8 @@ struct SweepRun {
   std::uint64_t seed = 0;
   std::vector<std::pair<std::string, std::string>> grid_values;  ///< this run's value of each grid key
   std::vector<std::string> sets;  ///< every "key=value" override (fixed then grid)
+  bool is_stream = false;         ///< `scenario` is a stream file: no seed, no scenario overrides
+  std::string relations;          ///< relations file for this run, or empty
 };
 
 /// Parses and validates; throws InputError with file, line and fix.
@@ -40,6 +46,8 @@ SweepSpec LoadSweepSpec(const std::string& path);
 /// Scenario-major, then grid points (last key varies fastest), then seeds.
 std::vector<SweepRun> ExpandSweep(const SweepSpec& spec);
 /// Stable run id (FNV-1a 64 of the canonical run description and slambox version).
-std::string RunId(const std::string& scenario, const std::vector<std::string>& sets, std::uint64_t seed);
+/// A non-empty `relations` file is part of the description (it changes the metrics).
+std::string RunId(const std::string& scenario, const std::vector<std::string>& sets, std::uint64_t seed,
+                  const std::string& relations = "");
 
 }  // namespace slambox

@@ -5,6 +5,7 @@
 // multiple of the simulator's step (computed as step_index * dt_s), so estimates and
 // ground truth share timestamps bit for bit.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -72,6 +73,10 @@ struct StreamHeader {
   double dt_s = 0.01;         ///< simulator step; ground truth is sampled at every step
   double duration_s = 0.0;
   SE2 start_pose;             ///< modules start here (DESIGN: estimates start at the true start)
+  /// [s] a converted log's own clock at stream time 0 (log time = t_s + time_origin_s), so
+  /// times from the log's tools (e.g. relation files) map onto the stream; absent when
+  /// the stream was simulated or converted before the origin was recorded.
+  std::optional<double> time_origin_s;
   SensorSuite sensors;
   World world;                ///< ground truth map; SLAM modules must not read it (localization may)
 };

@@ -1,5 +1,6 @@
 #include "core/stream_io.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <fstream>
@@ -70,11 +71,14 @@ struct Reader {
 };
 
 nlohmann::json HeaderJson(const StreamHeader& h) {
-  return {{"slambox_version", h.slambox_version}, {"scenario_name", h.scenario_name},
+  nlohmann::json j = {{"slambox_version", h.slambox_version}, {"scenario_name", h.scenario_name},
           {"scenario_yaml", h.scenario_yaml},     {"seed", h.seed},
           {"dt_s", h.dt_s},                       {"duration_s", h.duration_s},
           {"start_pose", ToJson(h.start_pose)},   {"sensors", ToJson(h.sensors)},
           {"world", ToJson(h.world)}};
+  // Written only when known, so simulated streams keep their bytes (and golden hashes).
+  if (h.time_origin_s) j["time_origin_s"] = *h.time_origin_s;
+  return j;
 }
 
 StreamHeader HeaderFromJson(const nlohmann::json& j) {
@@ -88,7 +92,35 @@ StreamHeader HeaderFromJson(const nlohmann::json& j) {
   h.start_pose = SE2FromJson(j.at("start_pose"));
   h.sensors = SensorSuiteFromJson(j.at("sensors"));
   h.world = WorldFromJson(j.at("world"));
+  if (j.contains("time_origin_s")) h.time_origin_s = j.at("time_origin_s").get<double>();
   return h;
+}
+
+// Magic, format version and header JSON; leaves r.pos at the first record.
+StreamHeader ParseHeaderOnly(Reader& r) {
+  const std::string& bytes = r.in;
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw InputError(r.name, 0, "not a slambox stream file (no stream magic at byte offset 0)",
+                     "give a file written by `slambox simulate ... -o FILE`, or a scenario name or YAML file");
+  r.pos = sizeof kMagic;
+  const std::uint32_t version = r.U32();
+  if (version != static_cast<std::uint32_t>(StreamHeader::kFormatVersion))
+    throw InputError(r.name, 0,
+                     "stream format version " + std::to_string(version) + " (byte offset 8); this slambox reads version " +
+                         std::to_string(StreamHeader::kFormatVersion),
+                     std::string(kRecreate) + " using this slambox");
+  StreamHeader header;
+  const size_t header_at = r.pos;
+  const std::uint64_t header_size = r.U64();
+  r.Need(header_size);
+  try {
+    header = HeaderFromJson(nlohmann::json::parse(bytes.substr(r.pos, header_size)));
+  } catch (const nlohmann::json::exception& e) {
+    r.Corrupt(std::string("unreadable header (") + e.what() + ")", header_at);
+  }
+  header.format_version = static_cast<int>(version);
+  r.pos += header_size;
+  return header;
 }
 
 void WriteEvent(Writer& w, const SensorEvent& event) {
@@ -144,27 +176,8 @@ std::string SerializeStream(const Stream& stream) {
 
 Stream ParseStream(const std::string& bytes, const std::string& name) {
   Reader r{bytes, name};
-  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
-    throw InputError(name, 0, "not a slambox stream file (no stream magic at byte offset 0)",
-                     "give a file written by `slambox simulate ... -o FILE`, or a scenario name or YAML file");
-  r.pos = sizeof kMagic;
-  const std::uint32_t version = r.U32();
-  if (version != static_cast<std::uint32_t>(StreamHeader::kFormatVersion))
-    throw InputError(name, 0,
-                     "stream format version " + std::to_string(version) + " (byte offset 8); this slambox reads version " +
-                         std::to_string(StreamHeader::kFormatVersion),
-                     std::string(kRecreate) + " using this slambox");
   Stream s;
-  const size_t header_at = r.pos;
-  const std::uint64_t header_size = r.U64();
-  r.Need(header_size);
-  try {
-    s.header = HeaderFromJson(nlohmann::json::parse(bytes.substr(r.pos, header_size)));
-  } catch (const nlohmann::json::exception& e) {
-    r.Corrupt(std::string("unreadable header (") + e.what() + ")", header_at);
-  }
-  s.header.format_version = static_cast<int>(version);
-  r.pos += header_size;
+  s.header = ParseHeaderOnly(r);
   while (true) {
     const size_t at = r.pos;
     const std::uint8_t tag = r.U8();
@@ -228,6 +241,25 @@ Stream ReadStream(const std::string& path) {
   std::ostringstream buffer;
   buffer << in.rdbuf();
   return ParseStream(buffer.str(), path);
+}
+
+StreamHeader ReadStreamHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open the stream file", "check the path");
+  constexpr size_t kPrefix = sizeof kMagic + 12;  // magic, u32 version, u64 header size
+  std::string bytes(kPrefix, '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(kPrefix));
+  bytes.resize(static_cast<size_t>(in.gcount()));
+  if (bytes.size() == kPrefix) {
+    std::uint64_t size = 0;
+    for (int i = 0; i < 8; ++i) size |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[12 + i])) << (8 * i);
+    const size_t n = static_cast<size_t>(std::min<std::uint64_t>(size, 1ull << 30));  // the reader reports a short file
+    bytes.resize(kPrefix + n);
+    in.read(bytes.data() + kPrefix, static_cast<std::streamsize>(n));
+    bytes.resize(kPrefix + static_cast<size_t>(in.gcount()));
+  }
+  Reader r{bytes, path};
+  return ParseHeaderOnly(r);
 }
 
 bool IsStreamFile(const std::string& path) {

@@ -23,6 +23,8 @@ namespace slambox {
 /// Writes to a temporary name in the same folder, then renames (never a partial file).
 void WriteStream(const Stream& stream, const std::string& path);
 Stream ReadStream(const std::string& path);
+/// Only the header (no events are read or checked): for a converted log's time origin.
+StreamHeader ReadStreamHeader(const std::string& path);
 /// True if the file starts with the stream magic (so commands can tell streams from scenarios).
 bool IsStreamFile(const std::string& path);
 

@@ -179,6 +179,7 @@ Stream ParseCarmenLog(const std::string& text, const std::string& name, const Ca
   s.header.scenario_name = std::filesystem::path(name).filename().string();
   s.header.scenario_yaml = "# converted from the CARMEN log " + s.header.scenario_name + " (no ground truth)\n";
   s.header.dt_s = o.dt_s;
+  s.header.time_origin_s = t0;  // the log's ipc clock at t = 0: relation files use that clock
   s.header.start_pose = log.odometry.front().pose * offset;
   // Merge by time: odometry before a scan at the same step (its pose is that scan's).
   size_t k = 1, j = 0;

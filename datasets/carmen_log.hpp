@@ -14,7 +14,9 @@
 // from the first scan's (laser pose, odometry pose) pair. Odometry events are the
 // increments between consecutive odometry poses (ODOM messages and the odometry pose of
 // every scan, in time order), so at each scan the integrated odometry equals that scan's
-// odometry pose. Times are seconds since the first message, rounded to `dt_s`. The log
+// odometry pose. Times are seconds since the first message, rounded to `dt_s`; the header's
+// time_origin_s is that first message's ipc timestamp, so log time = t_s + time_origin_s
+// within dt_s / 2 (relation files and other tools use the log's clock). The log
 // has no ground truth: the stream's ground truth is empty and so are pose metrics.
 #include <array>
 #include <string>

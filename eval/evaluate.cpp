@@ -36,6 +36,26 @@ std::vector<SE2> AlignedEstimate(const Association& a, AlignMode mode, const Ali
   return a.estimate;
 }
 
+// relation_* keys (eval/README.md); `unmatched` is null when the relations are RPE pairs.
+void AddRelationMetric(const RelationMetric& rel, const json& unmatched, json& m) {
+  m["relation_count"] = rel.relations;
+  m["relation_unmatched"] = unmatched;
+  m["relation_trans_mean_m"] = NumberOrNull(rel.trans_mean_m);
+  m["relation_trans_std_m"] = NumberOrNull(rel.trans_std_m);
+  m["relation_trans_sq_mean_m2"] = NumberOrNull(rel.trans_sq_mean_m2);
+  m["relation_trans_sq_std_m2"] = NumberOrNull(rel.trans_sq_std_m2);
+  m["relation_rot_mean_deg"] = NumberOrNull(rel.rot_mean_deg);
+  m["relation_rot_std_deg"] = NumberOrNull(rel.rot_std_deg);
+  m["relation_rot_sq_mean_deg2"] = NumberOrNull(rel.rot_sq_mean_deg2);
+  m["relation_rot_sq_std_deg2"] = NumberOrNull(rel.rot_sq_std_deg2);
+}
+
+void AddFileRelations(const std::vector<StampedPose>& est_poses, const EvalOptions& o, json& m) {
+  if (o.relations.empty()) return;
+  const RelationErrors e = ComputeRelationErrors(o.relations, est_poses, o.relation_matching);
+  AddRelationMetric(ComputeRelationMetric(e.translation_m, e.rotation_deg), e.unmatched, m);
+}
+
 void AddTrajectoryMetrics(const Association& a, const std::vector<SE2>& est, const EvalOptions& o,
                           const AlignmentResult& umeyama, json& m, json& series) {
   const AbsoluteErrors ate = AbsoluteTrajectoryErrors(a.groundtruth, est);
@@ -63,16 +83,7 @@ void AddTrajectoryMetrics(const Association& a, const std::vector<SE2>& est, con
   m["rpe_delta_unit"] = DeltaUnitName(o.rpe.unit);
   m["rpe_all_pairs"] = o.rpe.all_pairs;
 
-  const RelationMetric rel = ComputeRelationMetric(rpe.translation_m, rpe.rotation_deg);
-  m["relation_count"] = rel.relations;
-  m["relation_trans_mean_m"] = NumberOrNull(rel.trans_mean_m);
-  m["relation_trans_std_m"] = NumberOrNull(rel.trans_std_m);
-  m["relation_trans_sq_mean_m2"] = NumberOrNull(rel.trans_sq_mean_m2);
-  m["relation_trans_sq_std_m2"] = NumberOrNull(rel.trans_sq_std_m2);
-  m["relation_rot_mean_deg"] = NumberOrNull(rel.rot_mean_deg);
-  m["relation_rot_std_deg"] = NumberOrNull(rel.rot_std_deg);
-  m["relation_rot_sq_mean_deg2"] = NumberOrNull(rel.rot_sq_mean_deg2);
-  m["relation_rot_sq_std_deg2"] = NumberOrNull(rel.rot_sq_std_deg2);
+  if (o.relations.empty()) AddRelationMetric(ComputeRelationMetric(rpe.translation_m, rpe.rotation_deg), nullptr, m);
 
   const KittiResult kitti = KittiSegmentErrors(a.groundtruth, est, o.kitti);
   m["kitti_segments"] = kitti.segments;
@@ -113,6 +124,7 @@ void AddLandmarks(const GroundTruth& gt, const Estimate& est, const EvalOptions&
   const char* keys[] = {"landmark_rmse_m", "landmark_ospa_m", "landmark_spurious", "landmark_missed",
                         "landmark_anees",  "landmark_matched", "landmark_matching"};
   for (const char* k : keys) m[k] = nullptr;
+  if (gt.trajectory.empty()) return;  // no ground truth (a converted log): nothing to compare with
   if (est.landmarks.empty() && gt.world.landmarks.empty()) return;
   if (est.landmarks.empty()) {  // a module without a landmark map: not applicable
     return;
@@ -137,6 +149,7 @@ void AddMaps(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, j
   const char* keys[] = {"grid_cell_error", "grid_known_cells", "grid_mean_nearest_occupied_m",
                         "grid_mean_truth_to_estimate_m"};
   for (const char* k : keys) m[k] = nullptr;
+  if (gt.trajectory.empty()) return;  // no ground truth: the stream's world is empty, not the truth
   if (!est.grid || est.grid->width <= 0 || est.grid->height <= 0 || !(est.grid->resolution_m > 0.0)) return;
   const GridMapResult g = EvaluateGridMap(*est.grid, gt.world, o.grid);
   m["grid_cell_error"] = NumberOrNull(g.cell_error);
@@ -148,11 +161,12 @@ void AddMaps(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, j
 void AddLoopClosures(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, json& m) {
   const LoopClosureResult r = EvaluateLoopClosures(est.loop_closures, gt.trajectory, o.loop_closures);
   const bool any = !est.loop_closures.empty() || !est.pose_graph.nodes.empty();  // a graph-building module
+  const bool truth = !gt.trajectory.empty();  // precision, recall and revisits need the true path
   m["loop_closures"] = any ? json(r.accepted) : json(nullptr);
   m["loop_closures_proposed"] = any ? json(r.proposed) : json(nullptr);
-  m["loop_closure_precision"] = any ? NumberOrNull(r.precision) : json(nullptr);
-  m["loop_closure_recall"] = any ? NumberOrNull(r.recall) : json(nullptr);
-  m["revisit_episodes"] = r.revisit_episodes;
+  m["loop_closure_precision"] = any && truth ? NumberOrNull(r.precision) : json(nullptr);
+  m["loop_closure_recall"] = any && truth ? NumberOrNull(r.recall) : json(nullptr);
+  m["revisit_episodes"] = truth ? json(r.revisit_episodes) : json(nullptr);
 }
 
 void AddCost(const GroundTruth& gt, const Estimate& est, json& m) {
@@ -198,6 +212,7 @@ Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const Ev
   const AlignmentResult umeyama = UmeyamaAlignment(a.estimate, a.groundtruth);
   const std::vector<SE2> est_aligned = AlignedEstimate(a, o.align, umeyama);
   AddTrajectoryMetrics(a, est_aligned, o, umeyama, m, series);
+  AddFileRelations(est_poses, o, m);
   AddConsistency(a, est, o, m, series);
   AddLandmarks(gt, est, o, umeyama, m, series);
   AddMaps(gt, est, o, m);

@@ -14,6 +14,7 @@
 #include "eval/kitti_segments.hpp"
 #include "eval/landmark_map.hpp"
 #include "eval/loop_closures.hpp"
+#include "eval/relations.hpp"
 #include "eval/rpe.hpp"
 
 namespace slambox {
@@ -38,6 +39,10 @@ struct EvalOptions {
   LoopClosureOptions loop_closures;  ///< 0.2 m / 2 deg
   DivergenceOptions divergence;
   double nees_confidence = 0.95;   ///< two-sided band for per-step pose NEES (d = 3, one run)
+  /// Kümmerle relations (a relations file): when given, relation_* score the estimate on
+  /// them (no ground truth needed); else relation_* use the RPE pairs as relations.
+  std::vector<Relation> relations;
+  RelationMatchOptions relation_matching;
 };
 
 struct Evaluation {

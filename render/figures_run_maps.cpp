@@ -11,13 +11,15 @@
 
 namespace slambox::render {
 
+std::string RunTitleSuffix(const RunFolder& run) {
+  if (run.scenario.empty()) return "";
+  if (run.groundtruth.empty()) return " \u2014 " + run.scenario;
+  return " \u2014 " + run.scenario + ", seed " + std::to_string(run.seed);
+}
+
 namespace {
 
-std::string RunTitle(const RunFolder& run, const std::string& what) {
-  std::string t = what;
-  if (!run.scenario.empty()) t += " \u2014 " + run.scenario + ", seed " + std::to_string(run.seed);
-  return t;
-}
+std::string RunTitle(const RunFolder& run, const std::string& what) { return what + RunTitleSuffix(run); }
 
 std::string FormatSeconds(double t) {
   char buf[32];

@@ -9,6 +9,10 @@ namespace slambox::render {
 
 inline constexpr int kFigureWidthPx = 1200;
 
+/// " — scenario, seed N" for a simulated run; " — log" for a converted log (no ground
+/// truth: a seed means nothing there); "" without a scenario name.
+std::string RunTitleSuffix(const RunFolder& run);
+
 /// For animation frames: `extent_of` fixes the region shown (so frames do not jump) and
 /// `now_s` >= 0 titles the frame with its time and labels the path ends "now".
 bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of = nullptr,

@@ -77,7 +77,7 @@ bool DrawErrorFigure(const RunFolder& run, const std::string& stem) {
     if (&lines == (ate.empty() ? &rpe : &ate)) DrawLegend(c, axes, legend, pts);
     top += panel_h + 60.0;
   };
-  const std::string suffix = run.scenario.empty() ? "" : " \u2014 " + run.scenario + ", seed " + std::to_string(run.seed);
+  const std::string suffix = RunTitleSuffix(run);
   if (!ate.empty()) panel(ate, "Absolute trajectory error" + suffix, "ATE [m]");
   if (!rpe.empty()) panel(rpe, "Relative pose error per 1 m of travel", "RPE translation [m]");
   SaveFigure(c, stem);
@@ -131,7 +131,7 @@ bool DrawNeesFigure(const RunFolder& run, const std::string& stem) {
     const Eigen::Vector2d a = axes.ToPixel(axes.x0, band_lo), b = axes.ToPixel(axes.x1, band_hi);
     c.FillRect(a.x(), b.y(), b.x(), a.y(), band_color);
   };
-  const std::string suffix = run.scenario.empty() ? "" : " \u2014 " + run.scenario + ", seed " + std::to_string(run.seed);
+  const std::string suffix = RunTitleSuffix(run);
   DrawPanel(c, axes, lines, {"Pose NEES over time" + suffix, "time [s]", "NEES (log scale)"},
             band ? std::function<void()>(shade_band) : std::function<void()>());
   DrawLegendAt(c, axes.area.right + 14.0, axes.area.top, legend);

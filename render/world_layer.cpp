@@ -68,12 +68,24 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> RunExtent(const RunFolder& run, int 
     lo = lo.cwiseMin(p.pose.translation());
     hi = hi.cwiseMax(p.pose.translation());
   }
-  if (!(lo.x() <= hi.x())) {  // no world, no ground truth: the estimates alone
-    for (const auto& a : run.algorithms)
-      for (const auto& p : a.trajectory) {
-        lo = lo.cwiseMin(p.pose.translation());
-        hi = hi.cwiseMax(p.pose.translation());
-      }
+  if (!(lo.x() <= hi.x())) {  // no world, no ground truth (a real log): the estimates and their maps
+    const auto add = [&](const Eigen::Vector2d& p) {
+      if (!p.allFinite()) return;
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    };
+    for (size_t i = 0; i < run.algorithms.size(); ++i) {
+      if (only_algo >= 0 && static_cast<int>(i) != only_algo) continue;
+      const AlgorithmResult& a = run.algorithms[i];
+      for (const auto& p : a.trajectory) add(p.pose.translation());
+      if (!a.estimate) continue;
+      for (const auto& p : a.estimate->map_points) add(p);  // walls lie beyond the path
+      if (const auto& g = a.estimate->grid)
+        for (int iy = 0; iy < g->height; ++iy)
+          for (int ix = 0; ix < g->width; ++ix)
+            if (g->cells[static_cast<size_t>(iy) * g->width + ix] > 50)
+              add(g->origin_m + Eigen::Vector2d((ix + 0.5) * g->resolution_m, (iy + 0.5) * g->resolution_m));
+    }
     if (!(lo.x() <= hi.x())) return {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)};
     return {lo, hi};
   }

@@ -37,7 +37,9 @@ int WorldFigureHeight(int width_px, const Eigen::Vector2d& lo, const Eigen::Vect
 
 /// The region shown for a run: the world, ground truth and, within a margin of 50% of
 /// that extent, the estimated trajectories (a diverged estimate does not shrink the map).
-/// `only_algo` >= 0 limits the estimates considered to that module (its own figures).
+/// Without world and ground truth (a converted log) the estimates' paths, map points and
+/// occupied grid cells, so the figure fits the map. `only_algo` >= 0 limits the
+/// estimates considered to that module (its own figures).
 std::pair<Eigen::Vector2d, Eigen::Vector2d> RunExtent(const RunFolder& run, int only_algo = -1);
 
 /// Walls (segments, circles), true posts and movers' paths; `faint` for backgrounds.

@@ -12,7 +12,11 @@ PACKAGES=(
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
   python3  # /usr/bin/python3 (json, ctypes) for the exec example and its tests (examples/python/)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
+  mrpt-common  # MRPT's own config_files/ (the peers' real-log settings come from them, slam/mrpt/README.md)
 )
+# MRPT's own applications (icp-slam, rbpf-slam, graphslam-engine), only for the cross-check
+# in slam/mrpt/README.md: `--with-mrpt-apps`.
+[ "${1:-}" = "--with-mrpt-apps" ] && PACKAGES+=(mrpt-apps)
 [ "${1:-}" = "--with-slurm" ] && PACKAGES+=(slurmctld slurmd slurm-client munge)
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,5 +1,7 @@
 #include "slam/mrpt/mrpt_rbpf_slam.hpp"
 
+#include <algorithm>
+
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -36,6 +38,16 @@ struct MrptRbpfSlam::State {
   SE2 start;
   mb::OdometryAccumulator pending;  ///< odometry since the last scan
   std::vector<double> step_t_s;     ///< time of each path entry (entry 0: the start)
+  SE2 odometry;                     ///< raw odometry composed since the start (start frame)
+  std::vector<SE2> step_odometry;   ///< `odometry` at each path entry
+  /// Every scan: its time, odometry, and the path entry at or before it; Finish places it
+  /// on the final path by the odometry since that entry (a pose at every scan).
+  struct ScanRecord {
+    double t_s;
+    SE2 odometry;
+    size_t step;
+  };
+  std::vector<ScanRecord> scans;
   Estimate estimate;
 };
 
@@ -83,9 +95,13 @@ void MrptRbpfSlam::Start(const StreamHeader& header) {
   std::deque<mrpt::math::TPose3D> path;
   s.builder->getCurrentMostLikelyPath(path);
   s.step_t_s.assign(path.size(), 0.0);  // the initial pose(s)
+  s.step_odometry.assign(path.size(), SE2());
 }
 
-void MrptRbpfSlam::OnOdometry(const OdometryEvent& odometry) { state_->pending.Add(odometry, state_->alpha); }
+void MrptRbpfSlam::OnOdometry(const OdometryEvent& odometry) {
+  state_->pending.Add(odometry, state_->alpha);
+  state_->odometry = state_->odometry * odometry.delta;
+}
 
 void MrptRbpfSlam::OnLaserScan(const LaserScanEvent& scan) {
   State& s = *state_;
@@ -112,21 +128,31 @@ void MrptRbpfSlam::OnLaserScan(const LaserScanEvent& scan) {
   s.builder->getCurrentMostLikelyPath(path);
   if (path.size() > s.step_t_s.size()) {  // MRPT ran a filter step on this scan
     s.step_t_s.resize(path.size(), scan.t_s);
+    s.step_odometry.resize(path.size(), s.odometry);
     s.estimate.diagnostics["neff"].push_back({scan.t_s, s.builder->mapPDF.ESS() * config_.particles});
   }
+  s.scans.push_back({scan.t_s, s.odometry, s.step_t_s.size() - 1});
 }
 
 Estimate MrptRbpfSlam::Finish() {
   State& s = *state_;
   std::deque<mrpt::math::TPose3D> path;
   s.builder->getCurrentMostLikelyPath(path);
-  for (size_t k = 0; k < path.size() && k < s.step_t_s.size(); ++k) {
-    const SE2 pose_start(path[k].x, path[k].y, path[k].yaw);
-    const PoseEstimate pe{s.step_t_s[k], mb::ToWorld(s.start, pose_start), Eigen::Matrix3d::Zero(), false};
+  std::vector<SE2> steps;  // the final most likely path at the filter steps, start frame
+  for (size_t k = 0; k < path.size() && k < s.step_t_s.size(); ++k) steps.emplace_back(path[k].x, path[k].y, path[k].yaw);
+  const auto add = [&](double t_s, const SE2& pose_start) {
+    const PoseEstimate pe{t_s, mb::ToWorld(s.start, pose_start), Eigen::Matrix3d::Zero(), false};
     if (!s.estimate.trajectory.empty() && s.estimate.trajectory.back().t_s == pe.t_s)
       s.estimate.trajectory.back() = pe;  // a filter step on a scan at t = 0 refines the start
     else
       s.estimate.trajectory.push_back(pe);
+  };
+  if (!steps.empty()) {
+    add(0.0, steps.front());
+    for (const State::ScanRecord& r : s.scans) {
+      const size_t k = std::min(r.step, steps.size() - 1);
+      add(r.t_s, steps[k] * Between(s.step_odometry[k], r.odometry));  // exact at the filter steps
+    }
   }
   const auto* maps = s.builder->getCurrentlyBuiltMetricMap();
   if (maps) {

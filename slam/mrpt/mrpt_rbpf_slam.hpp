@@ -9,9 +9,10 @@
 // "standard" = odometry sampling + likelihood-field weights (default), "optimal" =
 // pfOptimalProposal with ICP against each particle's grid (MRPT's
 // gridmapping_optimal_sampling setup; diverges with the upsampled scan, see README).
-// The trajectory is the most likely particle's path at the filter steps (it changes as
-// particles are resampled, so it is read at Finish); map_points are that particle's
-// occupied grid cells.
+// The trajectory has a pose at every scan: the most likely particle's path at the filter
+// steps (it changes as particles are resampled, so it is read at Finish), and between
+// steps that path's last pose composed with the odometry since it; map_points are that
+// particle's occupied grid cells.
 #include <memory>
 #include <string>
 

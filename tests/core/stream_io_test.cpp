@@ -83,6 +83,30 @@ TEST(StreamIo, FileRoundTripIsBitIdentical) {
   EXPECT_EQ(std::get<GyroEvent>(r.events.back()).yaw_rate_rps, -0.0123456789);
 }
 
+TEST(StreamIo, TimeOriginIsWrittenOnlyWhenKnownAndReadBack) {
+  Stream s = SmallStream();
+  const std::string plain = SerializeStream(s);
+  EXPECT_EQ(plain.find("time_origin_s"), std::string::npos);  // simulated streams keep their bytes
+  EXPECT_FALSE(ParseStream(plain, "plain").header.time_origin_s.has_value());
+  s.header.time_origin_s = 976052905.167303;  // an ipc timestamp: every digit must survive
+  const std::string path = TempPath("origin.stream");
+  WriteStream(s, path);
+  const Stream r = ReadStream(path);
+  ASSERT_TRUE(r.header.time_origin_s.has_value());
+  EXPECT_EQ(*r.header.time_origin_s, 976052905.167303);
+  const StreamHeader h = ReadStreamHeader(path);
+  ASSERT_TRUE(h.time_origin_s.has_value());
+  EXPECT_EQ(*h.time_origin_s, 976052905.167303);
+  EXPECT_EQ(h.seed, s.header.seed);
+  EXPECT_EQ(h.sensors.lidar->beams, 36);
+  // The header reader checks what it reads: magic, and a file cut inside the header.
+  const std::string bytes = SerializeStream(s);
+  WriteBytes(path, bytes.substr(0, 40));
+  EXPECT_THROW(ReadStreamHeader(path), InputError);
+  WriteBytes(path, "not a stream at all");
+  EXPECT_THROW(ReadStreamHeader(path), InputError);
+}
+
 TEST(StreamIo, TruncatedFileNamesFileAndOffset) {
   const std::string bytes = SerializeStream(SmallStream());
   const std::string path = TempPath("truncated.stream");

@@ -167,6 +167,37 @@ TEST(CarmenLog, CompressedFilesReadLikePlainOnesAndCorruptOnesFail) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CarmenLog, TimeOriginMapsLogTimesOntoStreamTimes) {
+  // Messages out of file order at odd microseconds: the origin is the earliest ipc time,
+  // and every event's log time t_s + origin is within dt/2 of the message's own.
+  // Timestamps in microseconds as CARMEN writes them (the helpers above keep 10 digits).
+  const double t0 = 976052905.167303;
+  const auto at = [](std::string line, double ts) {
+    std::ostringstream s;
+    s.setf(std::ios::fixed);
+    s.precision(7);
+    s << ts;
+    const auto mark = line.rfind(" host");
+    const auto start = line.rfind(' ', mark - 1);
+    return line.substr(0, start + 1) + s.str() + line.substr(mark);
+  };
+  std::string text = at(Odom(SE2(0.1, 0, 0), 1.0), t0 + 0.1004) + at(Odom(SE2(0, 0, 0), 1.0), t0) +
+                     at(Flaser(181, 2.0, SE2(0.3, 0, 0), SE2(0.1, 0, 0), 1.0), t0 + 0.1234567) +
+                     at(Odom(SE2(0.2, 0, 0), 1.0), t0 + 0.2999);
+  const Stream s = ParseCarmenLog(text, "tiny.clf");
+  ASSERT_TRUE(s.header.time_origin_s.has_value());
+  EXPECT_EQ(*s.header.time_origin_s, t0);
+  // odometry, the scan's own odometry pose, the scan, odometry (the message at t0 moved the start)
+  const double expected[] = {0.100, 0.123, 0.123, 0.300};
+  const double ipc[] = {t0 + 0.1004, t0 + 0.1234567, t0 + 0.1234567, t0 + 0.2999};
+  ASSERT_EQ(s.events.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(EventTime(s.events[i]), expected[i], 1e-12);
+    EXPECT_LE(std::abs(EventTime(s.events[i]) + *s.header.time_origin_s - ipc[i]), 0.5 * s.header.dt_s + 1e-6);
+  }
+  EXPECT_TRUE(std::holds_alternative<LaserScanEvent>(s.events[2]));
+}
+
 TEST(CarmenLog, IntelLabLogWhenPresent) {
   const std::string path = testing::PublicDataFile(SLAMBOX_SOURCE_DIR, "rawlogs/intel.clf.bz2");
   if (path.empty()) GTEST_SKIP() << "public data absent (../shared/data or $SLAMBOX_DATA)";
@@ -176,6 +207,8 @@ TEST(CarmenLog, IntelLabLogWhenPresent) {
   EXPECT_EQ(scans, 13631u);  // every FLASER line (the data README)
   EXPECT_EQ(s.header.sensors.lidar->beams, 180);
   EXPECT_NEAR(s.header.duration_s, 2691.3, 0.1);
+  ASSERT_TRUE(s.header.time_origin_s.has_value());
+  EXPECT_LE(*s.header.time_origin_s, 976052905.167303);  // before the first relation (data README)
 }
 
 }  // namespace

@@ -145,6 +145,39 @@ TEST(Evaluate, DivergenceIsReportedAsData) {
   EXPECT_TRUE(m["ate_rmse_m"].is_null());
 }
 
+// A converted log has no ground truth and an empty world: every metric that needs the
+// truth is null (loop-closure precision was 0.0 and the grid was scored against nothing).
+TEST(Evaluate, MetricsThatNeedGroundTruthAreNullWithoutIt) {
+  const GroundTruth truth = Loop();
+  Estimate est = Copy(truth);
+  est.loop_closures.push_back({10.0, 50.0, Between(truth.trajectory[100].pose, truth.trajectory[500].pose), true});
+  est.landmarks.push_back({0, {5, 2}, Eigen::Matrix2d::Identity() * 0.01, true});
+  OccupancyGrid grid;
+  grid.width = grid.height = 10;
+  grid.resolution_m = 0.5;
+  grid.cells.assign(100, 0);
+  grid.cells[0] = 100;
+  est.grid = grid;
+  for (auto& p : est.trajectory) p.has_covariance = true, p.covariance = Eigen::Matrix3d::Identity() * 0.01;
+  // With the truth these are numbers (so the test below can fail)...
+  const auto with = EvaluateEstimate(truth, est).metrics;
+  for (const char* key : {"loop_closure_precision", "grid_cell_error", "landmark_rmse_m",
+                          "landmark_spurious", "anees", "ate_rmse_m", "rpe_trans_rmse_m", "revisit_episodes"})
+    EXPECT_TRUE(with.at(key).is_number()) << key << " " << with.at(key);
+  // ...without it they are null, and the counts that need no truth stay.
+  const auto m = EvaluateEstimate(GroundTruth{}, est).metrics;
+  for (const char* key : {"loop_closure_precision", "loop_closure_recall", "revisit_episodes", "grid_cell_error",
+                          "grid_known_cells", "grid_mean_nearest_occupied_m", "grid_mean_truth_to_estimate_m",
+                          "landmark_rmse_m", "landmark_ospa_m", "landmark_spurious", "landmark_missed",
+                          "landmark_anees", "anees", "ate_rmse_m", "ate_aligned_rmse_m", "heading_rmse_deg",
+                          "rpe_trans_rmse_m", "rpe_rot_rmse_deg", "kitti_trans_percent", "relation_trans_mean_m",
+                          "relation_unmatched", "nees_in_band_fraction"})
+    EXPECT_TRUE(m.at(key).is_null()) << key << " " << m.at(key);
+  EXPECT_EQ(m.at("loop_closures"), 1);
+  EXPECT_EQ(m.at("loop_closures_proposed"), 1);
+  EXPECT_EQ(m.at("status"), "ok");
+}
+
 TEST(Cost, HandComputed) {
   const CostResult c = ComputeCost({0.1, 0.3, 0.2, 0.4}, 1.0, 20.0);
   EXPECT_TRUE(c.available);

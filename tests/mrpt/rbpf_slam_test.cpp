@@ -5,6 +5,8 @@
 // half a beam step (seed 7: 0.147 m against 0.082 m; seed 8: 0.244 m against 0.098 m).
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "slam/mrpt/mrpt_rbpf_slam.hpp"
 #include "tests/mrpt/mrpt_test_support.hpp"
 
@@ -39,6 +41,14 @@ TEST(MrptRbpfSlam, BeatsDeadReckoningAndMapsTheRoom) {
     for (size_t k = 1; k < e.trajectory.size(); ++k) ASSERT_GT(e.trajectory[k].t_s, e.trajectory[k - 1].t_s);
     EXPECT_GT(e.map_points.size(), 100u);
     EXPECT_FALSE(e.diagnostics.at("neff").empty());
+    // A pose at every scan, not only at the filter steps (relation metrics need them).
+    std::set<double> times;
+    for (const auto& p : e.trajectory) times.insert(p.t_s);
+    size_t scans = 0, missing = 0;
+    for (const auto& ev : s.events)
+      if (const auto* scan = std::get_if<LaserScanEvent>(&ev)) ++scans, missing += times.count(scan->t_s) ? 0 : 1;
+    EXPECT_EQ(missing, 0u) << "of " << scans << " scans";
+    EXPECT_LT(e.diagnostics.at("neff").size(), scans);  // fewer filter steps than scans (107 of 206)
   }
 }
 
