@@ -25,6 +25,7 @@ std::string ExecHeaderLine(const StreamHeader& header, const std::string& module
             {"duration_s", header.duration_s},
             {"start_pose", ToJson(header.start_pose)},
             {"sensors", ToJson(header.sensors)}};
+  if (header.time_origin_s) j["time_origin_s"] = *header.time_origin_s;  // a converted log's own clock at t_s = 0
   if (with_world) j["world"] = ToJson(header.world);
   if (module.empty()) j.erase("module"), j.erase("params");
   return "{\"type\":\"header\"," + j.dump().substr(1);  // "type" first, as in every line

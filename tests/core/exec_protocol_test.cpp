@@ -78,6 +78,9 @@ TEST(ExecProtocol, HeaderHasVersionParamsAndTheWorldOnlyWhenAsked) {
   EXPECT_EQ(j["start_pose"], json::parse("[1.0, 2.0, 0.5]"));
   EXPECT_EQ(j["sensors"]["odometry"]["alpha"].size(), 4u);
   EXPECT_FALSE(j.contains("world"));
+  EXPECT_FALSE(j.contains("time_origin_s"));
+  h.time_origin_s = 1000.25;
+  EXPECT_EQ(json::parse(ExecHeaderLine(h, "exec:x", json::object(), false))["time_origin_s"], 1000.25);
   EXPECT_TRUE(json::parse(ExecHeaderLine(h, "exec:x", json::object(), true)).contains("world"));
   const json exported = json::parse(ExecHeaderLine(h, "", nullptr, true));
   EXPECT_FALSE(exported.contains("module"));
