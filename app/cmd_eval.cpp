@@ -157,19 +157,19 @@ void AddEvalCommand(CLI::App& app) {
     if (est.trajectory.empty())
       throw InputError(args->est_path, 0, "no pose in the file", "give a non-empty TUM file");
     const Evaluation ev = EvaluateEstimate(gt, est, options);
-    if (!args->gt_path.empty() && ev.metrics["matched_poses"].get<size_t>() == 0)
+    if (!args->gt_path.empty() && ev.metrics.matched_poses.value_or(0) == 0)
       throw InputError(args->est_path, 0,
                        "no timestamp matches the ground truth within " + std::to_string(args->t_max_diff_s) + " s",
                        "check that both files use the same clock, or raise --t-max-diff / use --interpolate");
-    if (!options.relations.empty() && ev.metrics["relation_count"].get<int>() == 0)
+    if (!options.relations.empty() && ev.metrics.relation.relations == 0)
       throw InputError(args->est_path, 0,
                        "no relation time has an estimate pose within " + std::to_string(args->relation_max_diff_s) +
                            " s (time origin " + std::to_string(options.relation_matching.time_origin_s) + " s)",
                        "give --stream STREAM (the converted log) or --time-origin-s, or the relations of this log");
     if (args->json)
-      std::cout << ev.metrics.dump(2) << "\n";
+      std::cout << ToJson(ev.metrics).dump(2) << "\n";
     else
-      PrintTable(ev.metrics, std::cout);
+      PrintTable(ToJson(ev.metrics), std::cout);
   });
 }
 

@@ -86,16 +86,13 @@ std::vector<InitAttempt> SolveWithInit(const PoseGraphFile& file, InitMethod ini
 }
 
 void RunOptimize(const OptimizeArgs& args) {
-  const std::map<std::string, RobustKernel> kernels = {{"none", RobustKernel::kNone},
-                                                       {"huber", RobustKernel::kHuber},
-                                                       {"cauchy", RobustKernel::kCauchy},
-                                                       {"dcs", RobustKernel::kDcs}};
   PoseGraphFile file = ReadPoseGraph(args.graph_path);
   int loop_edges = 0;
   for (const PoseGraphEdge& e : file.graph.edges) loop_edges += e.loop_closure ? 1 : 0;
 
   PoseGraphSolveOptions options;
-  options.loop_kernel = kernels.at(args.robust);
+  for (const auto& [kernel, name] : RobustKernelNames())
+    if (args.robust == name) options.loop_kernel = kernel;  // --robust is checked against the same names
   options.kernel_scale = args.kernel_scale;
   options.max_iterations = args.max_iterations;
   options.num_threads = args.threads;
@@ -171,7 +168,11 @@ void AddOptimizeCommand(CLI::App& app) {
       ->required();
   cmd->add_option("-o,--output", args->out_path, "write the optimized graph here (g2o)");
   cmd->add_option("--robust", args->robust, "robust kernel on loop-closure edges")
-      ->check(CLI::IsMember({"none", "huber", "cauchy", "dcs"}))
+      ->check(CLI::IsMember([] {
+        std::vector<std::string> names;
+        for (const auto& [kernel, name] : RobustKernelNames()) names.emplace_back(name);
+        return names;
+      }()))
       ->capture_default_str();
   cmd->add_option("--kernel-scale", args->kernel_scale,
                   "Huber/Cauchy scale on the whitened residual; DCS's Phi (on chi2)")

@@ -23,7 +23,7 @@ struct ParamValue {
   double d = 0.0;
   int i = 0;
   bool b = false;
-  std::string s;
+  int choice = 0;  ///< index into the string parameter's choices
 };
 
 }  // namespace
@@ -37,7 +37,11 @@ json BindExecParams(const ExecDeclaration& decl, const ParamOverrides* overrides
       if (p.type == ExecParamType::kDouble) binder.Bind(p.name, v.d, p.unit, p.meaning);
       else if (p.type == ExecParamType::kInt) binder.Bind(p.name, v.i, p.unit, p.meaning);
       else if (p.type == ExecParamType::kBool) binder.Bind(p.name, v.b, p.unit, p.meaning);
-      else binder.Bind(p.name, v.s, p.choices, p.meaning);
+      else {
+        EnumNames<int> names;  // a string parameter is an enum over its declared choices
+        for (std::size_t c = 0; c < p.choices.size(); ++c) names.emplace_back(static_cast<int>(c), p.choices[c].c_str());
+        binder.Bind(p.name, v.choice, names, p.meaning);
+      }
     }
   };
   ParamBinder binder;
@@ -58,7 +62,7 @@ json BindExecParams(const ExecDeclaration& decl, const ParamOverrides* overrides
     if (p.type == ExecParamType::kDouble) j[p.name] = v.d;
     else if (p.type == ExecParamType::kInt) j[p.name] = v.i;
     else if (p.type == ExecParamType::kBool) j[p.name] = v.b;
-    else j[p.name] = v.s;
+    else j[p.name] = p.choices[static_cast<std::size_t>(v.choice)];
   }
   return j;
 }

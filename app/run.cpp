@@ -157,22 +157,22 @@ json RunAndWrite(const RunRequest& request) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
-    json metrics;
+    Metrics metrics;
     try {
       const Estimate estimate = Replay(*modules[i], stream);
       const Evaluation evaluation = EvaluateEstimate(gt, estimate, options);
       metrics = evaluation.metrics;
       WriteTum((dir / (name + ".tum")).string(), Poses(estimate));
       WriteJson(dir / "estimates" / (name + ".json"), ToJson(estimate));
-      WriteJson(dir / "series" / (name + ".json"), evaluation.series);
+      WriteJson(dir / "series" / (name + ".json"), ToJson(evaluation.series));
     } catch (const ModuleDiverged& e) {  // e.g. an exec child's NaN pose
-      metrics = {{"status", "diverged"}, {"reason", e.what()}};
+      metrics = UnscoredMetrics(RunStatus::kDiverged, e.what());
     } catch (const std::exception& e) {  // a failing module never takes the others down
-      metrics = {{"status", "failed"}, {"reason", e.what()}};
+      metrics = UnscoredMetrics(RunStatus::kFailed, e.what());
     }
     modules[i].reset();
-    doc["algorithms"][name] = metrics;
-    if (progress) std::cerr << " " << metrics.value("status", "?") << "\n";
+    doc["algorithms"][name] = ToJson(metrics);
+    if (progress) std::cerr << " " << RunStatusName(metrics.status) << "\n";
   }
   doc["peak_rss_mb"] = PeakRssMb();
   WriteJson(dir / "metrics.json", doc);

@@ -1,8 +1,29 @@
 #include "core/json_io.hpp"
 
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+
 #include <cmath>
 
 namespace slambox {
+
+nlohmann::json ReadJsonFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "cannot open the file", "check the path; `slambox run` writes it");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const std::string text = buf.str();
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    const size_t upto = std::min(text.size(), static_cast<size_t>(e.byte));
+    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + upto, '\n'));
+    throw InputError(path, line, std::string("malformed JSON: ") + e.what(), "re-run the command that wrote it");
+  }
+}
 
 using nlohmann::json;
 

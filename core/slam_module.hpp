@@ -62,6 +62,7 @@ ModuleInfo MakeModuleInfo(std::string name, std::string description, SensorNeeds
     ParamBinder b;
     bind(c, b);
     b.Apply(overrides, name);
+    b.Validate(name);  // every bound number in its range, once (Ceres' Options::IsValid)
     return std::make_unique<Module>(c);
   };
   return info;

@@ -1,19 +1,20 @@
 #pragma once
-// The evaluator's entry point: one SLAM module's Estimate against ground truth ->
-// one algorithm's entry of metrics.json (DESIGN.md keys plus additions, null where not
-// applicable) and the per-step error series the figure renderer plots.
-// Every metric and its evo equivalent is listed in eval/README.md.
-#include <nlohmann/json.hpp>
+// The evaluator's entry point: one SLAM module's Estimate against ground truth -> its
+// Metrics (eval/metrics.hpp: one algorithm's entry of metrics.json, NaN/null where not
+// applicable) and the per-step ErrorSeries the figure renderer plots.
+// The keys and their evo equivalents are the schema in eval/README.md.
 #include <vector>
 
 #include "core/estimate.hpp"
 #include "core/stream.hpp"
 #include "core/world.hpp"
 #include "eval/divergence.hpp"
+#include "eval/error_series.hpp"
 #include "eval/grid_map.hpp"
 #include "eval/kitti_segments.hpp"
 #include "eval/landmark_map.hpp"
 #include "eval/loop_closures.hpp"
+#include "eval/metrics.hpp"
 #include "eval/relations.hpp"
 #include "eval/rpe.hpp"
 
@@ -46,8 +47,8 @@ struct EvalOptions {
 };
 
 struct Evaluation {
-  nlohmann::json metrics;  ///< one algorithm's entry of metrics.json
-  nlohmann::json series;   ///< t_s, distance_m, ate_m, heading_error_deg, nees, nees_band_95, rpe, landmarks
+  Metrics metrics;     ///< one algorithm's entry of metrics.json (ToJson)
+  ErrorSeries series;  ///< series/<algo>.json (ToJson)
 };
 
 Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const EvalOptions& options = {});

@@ -53,15 +53,34 @@ nlohmann::json NumberOrNull(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
-void AddStatistics(nlohmann::json& out, const std::string& prefix, const std::string& unit,
-                   const std::string& sse_unit, const ErrorStatistics& s) {
-  out[prefix + "_rmse" + unit] = NumberOrNull(s.rmse);
-  out[prefix + "_mean" + unit] = NumberOrNull(s.mean);
-  out[prefix + "_median" + unit] = NumberOrNull(s.median);
-  out[prefix + "_std" + unit] = NumberOrNull(s.std);
-  out[prefix + "_min" + unit] = NumberOrNull(s.min);
-  out[prefix + "_max" + unit] = NumberOrNull(s.max);
-  out[prefix + "_sse" + sse_unit] = NumberOrNull(s.sse);
+SampleSummary Summarize(std::vector<double> v) {
+  std::erase_if(v, [](double x) { return std::isnan(x); });
+  SampleSummary s;
+  s.n = static_cast<int>(v.size());
+  if (v.empty()) return s;
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  s.mean = sum / s.n;
+  double ss = 0.0;
+  for (double x : v) ss += (x - s.mean) * (x - s.mean);
+  s.std = s.n > 1 ? std::sqrt(ss / (s.n - 1)) : 0.0;
+  s.ci95_half = s.n > 1 ? StudentT975(s.n - 1) * s.std / std::sqrt(s.n) : 0.0;
+  std::sort(v.begin(), v.end());
+  s.median = Percentile(v, 50.0);
+  s.q1 = Percentile(v, 25.0);
+  s.q3 = Percentile(v, 75.0);
+  const double iqr = s.q3 - s.q1, lo_fence = s.q1 - 1.5 * iqr, hi_fence = s.q3 + 1.5 * iqr;
+  s.whisker_lo = s.q1;
+  s.whisker_hi = s.q3;
+  for (double x : v) {
+    if (x < lo_fence || x > hi_fence) {
+      s.outliers.push_back(x);
+    } else {
+      s.whisker_lo = std::min(s.whisker_lo, x);
+      s.whisker_hi = std::max(s.whisker_hi, x);
+    }
+  }
+  return s;
 }
 
 double StudentT975(int dof) {

@@ -3,7 +3,6 @@
 // them (numpy): rmse = sqrt(mean(e^2)), std with ddof 0, median averaging the two middle
 // values of an even-sized array, sse = sum(e^2).
 #include <nlohmann/json.hpp>
-#include <string>
 #include <vector>
 
 namespace slambox {
@@ -31,11 +30,18 @@ double Percentile(std::vector<double> values, double q);
 /// NaN for dof < 1.
 double StudentT975(int dof);
 
-/// Writes `<prefix>_rmse<unit>`, `_mean`, `_median`, `_std`, `_min`, `_max` and
-/// `<prefix>_sse<sse_unit>` into `out`, null for an empty array. E.g. prefix "ate",
-/// unit "_m", sse_unit "_m2" gives ate_rmse_m ... ate_sse_m2.
-void AddStatistics(nlohmann::json& out, const std::string& prefix, const std::string& unit,
-                   const std::string& sse_unit, const ErrorStatistics& stats);
+/// Statistics of one group of values over runs (a sweep cell, a box of a figure), NaNs
+/// ignored: sample std (n - 1; 0 for n = 1), the numpy median, quartiles by linear
+/// interpolation (Hyndman & Fan type 7, numpy's default), Tukey whiskers (the most extreme
+/// values within 1.5 IQR of the box) and the half-width of the 95 % Student-t interval of
+/// the mean, t(0.975, n - 1) std / sqrt(n) (0 for n < 2).
+struct SampleSummary {
+  int n = 0;
+  double mean = 0, std = 0, median = 0, ci95_half = 0;
+  double q1 = 0, q3 = 0, whisker_lo = 0, whisker_hi = 0;
+  std::vector<double> outliers;
+};
+SampleSummary Summarize(std::vector<double> values);
 
 /// A finite double as JSON, NaN/inf as null.
 nlohmann::json NumberOrNull(double value);

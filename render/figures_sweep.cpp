@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "eval/metrics.hpp"
+#include "eval/statistics.hpp"
 #include "render/legend.hpp"
 #include "render/sweep_folder.hpp"
 
@@ -24,39 +26,36 @@ std::string Safe(std::string s) {
   return s;
 }
 
-std::string MetricLabel(const std::string& m) {
-  if (m == "ate_rmse_m") return "ATE RMSE [m]";
-  if (m == "rpe_trans_rmse_m") return "RPE translation RMSE [m]";
-  if (m == "rpe_rot_rmse_deg") return "RPE rotation RMSE [deg]";
-  if (m == "ate_aligned_rmse_m") return "aligned ATE RMSE [m]";
-  if (m == "anees") return "ANEES";
-  return m;
+std::string MetricLabel(const std::string& key) {
+  const MetricDescriptor* d = FindMetric(key);
+  return d ? d->label : key;
 }
 
 std::vector<double> Values(const SweepFolder& sw, const std::string& metric, auto&& keep) {
   std::vector<double> out;
-  for (const auto& r : sw.rows)
+  for (const auto& r : sw.results.rows)
     if (r.status == "ok" && keep(r) && r.metrics.count(metric)) out.push_back(r.metrics.at(metric));
   return out;
 }
 
 std::vector<std::string> PrimaryMetrics(const SweepFolder& sw) {
   std::vector<std::string> out;
+  const auto& keys = sw.results.metric_keys;
   for (const char* m : {"ate_rmse_m", "rpe_trans_rmse_m"})
-    if (std::find(sw.metric_keys.begin(), sw.metric_keys.end(), m) != sw.metric_keys.end()) out.push_back(m);
-  if (out.empty() && !sw.metric_keys.empty()) out.push_back(sw.metric_keys.front());
+    if (std::find(keys.begin(), keys.end(), m) != keys.end()) out.push_back(m);
+  if (out.empty() && !keys.empty()) out.push_back(keys.front());
   return out;
 }
 
 bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::string& stem) {
-  std::vector<std::vector<GroupStats>> stats(sw.scenarios.size(), std::vector<GroupStats>(sw.algorithms.size()));
+  std::vector<std::vector<SampleSummary>> stats(sw.scenarios.size(), std::vector<SampleSummary>(sw.algorithms.size()));
   double lo = INFINITY, hi = -INFINITY;
   for (size_t s = 0; s < sw.scenarios.size(); ++s)
     for (size_t a = 0; a < sw.algorithms.size(); ++a) {
-      stats[s][a] = Describe(Values(sw, metric, [&](const SweepRow& r) {
+      stats[s][a] = Summarize(Values(sw, metric, [&](const ResultRow& r) {
         return r.scenario == sw.scenarios[s] && r.algorithm == sw.algorithms[a];
       }));
-      const GroupStats& g = stats[s][a];
+      const SampleSummary& g = stats[s][a];
       if (g.n == 0) continue;
       lo = std::min({lo, g.whisker_lo, g.outliers.empty() ? g.whisker_lo : *std::min_element(g.outliers.begin(), g.outliers.end())});
       hi = std::max({hi, g.whisker_hi, g.outliers.empty() ? g.whisker_hi : *std::max_element(g.outliers.begin(), g.outliers.end())});
@@ -83,7 +82,7 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
     const double gx = area.left + (s + 0.5) * group_w;
     c.Text(gx, area.bottom + 12, sw.scenarios[s], {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kTop});
     for (size_t a = 0; a < sw.algorithms.size(); ++a) {
-      const GroupStats& g = stats[s][a];
+      const SampleSummary& g = stats[s][a];
       if (g.n == 0) continue;
       const Rgba col = ModuleColor(sw.algorithms, a);
       const double x = gx + (a - 0.5 * (sw.algorithms.size() - 1)) * box_w * 1.15;
@@ -114,7 +113,7 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
          {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kBottom, .vertical = true});
   c.Text(0.5 * (area.left + area.right), area.bottom + 50, "scenario", {.size_px = kStyle.label_px, .h = HAlign::kCenter, .v = VAlign::kTop});
   c.Text(0.5 * (area.left + area.right), area.top - 14, MetricLabel(metric) + " per module and scenario (all seeds" +
-         std::string(sw.grid_keys.empty() ? ")" : " and grid cells)"), {.size_px = kStyle.title_px, .h = HAlign::kCenter, .weight = FontWeight::kBold});
+         std::string(sw.results.grid_keys.empty() ? ")" : " and grid cells)"), {.size_px = kStyle.title_px, .h = HAlign::kCenter, .weight = FontWeight::kBold});
   std::vector<LegendEntry> legend;
   for (size_t a = 0; a < sw.algorithms.size(); ++a)
     legend.push_back({.label = sw.algorithms[a], .line = {{}, 0.0, {}}, .patch = ModuleColor(sw.algorithms, a).WithAlpha(0.5)});
@@ -133,10 +132,9 @@ struct Levels {
 
 Levels LevelsOf(const SweepFolder& sw, const std::string& key) {
   Levels lv;
-  for (const auto& r : sw.rows) {
-    const auto it = r.grid.find(key);
-    if (it != r.grid.end() && std::find(lv.text.begin(), lv.text.end(), it->second) == lv.text.end())
-      lv.text.push_back(it->second);
+  for (const auto& r : sw.results.rows) {
+    const std::string* v = GridValue(r, key);
+    if (v && std::find(lv.text.begin(), lv.text.end(), *v) == lv.text.end()) lv.text.push_back(*v);
   }
   std::vector<std::pair<double, std::string>> numbers;
   for (const auto& t : lv.text) {
@@ -158,16 +156,16 @@ Levels LevelsOf(const SweepFolder& sw, const std::string& key) {
   return lv;
 }
 
-bool MatchesLevel(const SweepRow& r, const std::string& key, const std::string& level) {
-  const auto it = r.grid.find(key);
-  return it != r.grid.end() && it->second == level;
+bool MatchesLevel(const ResultRow& r, const std::string& key, const std::string& level) {
+  const std::string* v = GridValue(r, key);
+  return v && *v == level;
 }
 
 bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::string& metric, const std::string& stem) {
   const Levels lv = LevelsOf(sw, key);
   const std::vector<double>& levels = lv.x;
   if (levels.size() < 2) return false;
-  struct Curve { std::string label; Rgba color; std::vector<GroupStats> at; };
+  struct Curve { std::string label; Rgba color; std::vector<SampleSummary> at; };
   std::vector<Curve> curves;
   double lo = INFINITY, hi = -INFINITY;
   for (size_t s = 0; s < sw.scenarios.size(); ++s)
@@ -175,10 +173,10 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
       Curve cu{sw.algorithms[a] + (sw.scenarios.size() > 1 ? " / " + sw.scenarios[s] : ""),
                sw.scenarios.size() > 1 ? SeriesColor(static_cast<int>(a + s * sw.algorithms.size())) : ModuleColor(sw.algorithms, a), {}};
       for (const std::string& level : lv.text) {
-        cu.at.push_back(Describe(Values(sw, metric, [&](const SweepRow& r) {
+        cu.at.push_back(Summarize(Values(sw, metric, [&](const ResultRow& r) {
           return r.scenario == sw.scenarios[s] && r.algorithm == sw.algorithms[a] && MatchesLevel(r, key, level);
         })));
-        const GroupStats& g = cu.at.back();
+        const SampleSummary& g = cu.at.back();
         if (g.n > 0) { lo = std::min(lo, g.mean - g.ci95_half); hi = std::max(hi, g.mean + g.ci95_half); }
       }
       curves.push_back(cu);
@@ -199,7 +197,7 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
     const double dx = (k - 0.5 * (curves.size() - 1)) * 5.0;
     std::vector<Eigen::Vector2d> line;
     for (size_t i = 0; i < levels.size(); ++i) {
-      const GroupStats& g = cu.at[i];
+      const SampleSummary& g = cu.at[i];
       if (g.n == 0) continue;
       const Eigen::Vector2d m = axes.ToPixel(levels[i], g.mean) + Eigen::Vector2d(dx, 0);
       const Eigen::Vector2d a = axes.ToPixel(levels[i], g.mean - g.ci95_half) + Eigen::Vector2d(dx, 0);
@@ -221,8 +219,8 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
 }
 
 bool HeatmapFigure(const SweepFolder& sw, const std::string& algo, const std::string& metric, const std::string& stem) {
-  if (sw.grid_keys.size() < 2) return false;
-  const std::string kx = sw.grid_keys[0], ky = sw.grid_keys[1];
+  if (sw.results.grid_keys.size() < 2) return false;
+  const std::string kx = sw.results.grid_keys[0], ky = sw.results.grid_keys[1];
   const Levels lx = LevelsOf(sw, kx), ly = LevelsOf(sw, ky);
   const std::vector<std::string>& xs = lx.text;
   const std::vector<std::string>& ys = ly.text;
@@ -231,7 +229,7 @@ bool HeatmapFigure(const SweepFolder& sw, const std::string& algo, const std::st
   double lo = INFINITY, hi = -INFINITY;
   for (size_t j = 0; j < ys.size(); ++j)
     for (size_t i = 0; i < xs.size(); ++i) {
-      const GroupStats g = Describe(Values(sw, metric, [&](const SweepRow& r) {
+      const SampleSummary g = Summarize(Values(sw, metric, [&](const ResultRow& r) {
         return r.algorithm == algo && MatchesLevel(r, kx, xs[i]) && MatchesLevel(r, ky, ys[j]);
       }));
       if (g.n == 0) continue;
@@ -308,7 +306,7 @@ std::vector<std::string> RenderSweepFiguresListed(const std::string& sweep_dir) 
   const std::vector<std::string> metrics = PrimaryMetrics(sw);
   for (const auto& m : metrics) emit("box_" + m, BoxFigure(sw, m, path("box_" + m)));
   if (!metrics.empty()) {
-    for (const auto& k : sw.grid_keys) emit("vs_" + Safe(k), VersusFigure(sw, k, metrics[0], path("vs_" + Safe(k))));
+    for (const auto& k : sw.results.grid_keys) emit("vs_" + Safe(k), VersusFigure(sw, k, metrics[0], path("vs_" + Safe(k))));
     for (const auto& a : sw.algorithms) emit("heatmap_" + Safe(a), HeatmapFigure(sw, a, metrics[0], path("heatmap_" + Safe(a))));
   }
   return written;

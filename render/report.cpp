@@ -8,6 +8,8 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/json_io.hpp"
+#include "eval/metrics.hpp"
 #include "render/run_folder.hpp"
 
 namespace slambox::render {
@@ -76,25 +78,25 @@ std::string RunReport(const std::string& dir) {
         ", duration " + Cell(m.value("duration_s", nlohmann::json())) + " s, distance travelled " +
         Cell(m.value("distance_m", nlohmann::json())) + " m (slambox " + Cell(m.value("slambox_version", nlohmann::json())) + ").\n\n";
   md += "## Metrics\n\n";
-  // Columns: the DESIGN.md keys in their order, then any other key the entries carry.
-  std::vector<std::string> cols{"status", "ate_rmse_m", "ate_mean_m", "ate_max_m", "ate_aligned_rmse_m", "rpe_trans_rmse_m",
-                                "rpe_rot_rmse_deg", "anees", "landmark_rmse_m", "loop_closures", "loop_closure_precision",
-                                "runtime_s", "realtime_factor"};
-  const size_t kHeadlineColumns = cols.size();
-  const nlohmann::json algos = m.value("algorithms", nlohmann::json::object());
-  for (const auto& [name, entry] : algos.items())
-    if (entry.is_object())
-      for (const auto& [k, v] : entry.items())
-        if (std::find(cols.begin(), cols.end(), k) == cols.end()) cols.push_back(k);
-  // Headline table: one row per module, the DESIGN.md keys. Then every key, transposed
-  // (one row per metric), which stays readable however many metrics eval writes.
+  // Each entry read through the typed record, shown as metrics.json holds it.
+  const std::string metrics_path = (fs::path(dir) / "metrics.json").string();
+  const nlohmann::json entries = m.value("algorithms", nlohmann::json::object());
+  nlohmann::json algos = nlohmann::json::object();
+  for (const auto& [name, entry] : entries.items()) algos[name] = ToJson(MetricsFromJson(entry, metrics_path));
+  // Headline table: one row per module, the metric table's headline keys in its order.
+  // Then every other key, transposed (one row per metric), in order of appearance.
   std::vector<std::string> shown, all;
-  for (size_t i = 0; i < cols.size(); ++i) {
-    bool present = false;
-    for (const auto& [name, entry] : algos.items()) present = present || (entry.is_object() && entry.contains(cols[i]));
-    if (!present) continue;
-    (i < kHeadlineColumns ? shown : all).push_back(cols[i]);
-  }
+  auto present = [&](const std::string& key) {
+    for (const auto& [name, entry] : algos.items())
+      if (entry.contains(key)) return true;
+    return false;
+  };
+  for (const auto& d : MetricTable())
+    if (d.headline && present(d.key)) shown.push_back(d.key);
+  for (const auto& [name, entry] : algos.items())
+    for (const auto& [k, v] : entry.items())
+      if (std::find(shown.begin(), shown.end(), k) == shown.end() && std::find(all.begin(), all.end(), k) == all.end())
+        all.push_back(k);
   auto cell = [](const nlohmann::json& entry, const std::string& key) {
     return entry.is_object() && entry.contains(key) ? Cell(entry.at(key)) : std::string("\u2014");
   };

@@ -12,49 +12,7 @@ namespace slambox::render {
 
 namespace fs = std::filesystem;
 
-nlohmann::json ReadJsonFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "cannot open the file", "check the path; `slambox run` writes it");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  const std::string text = buf.str();
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    const size_t upto = std::min(text.size(), static_cast<size_t>(e.byte));
-    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + upto, '\n'));
-    throw InputError(path, line, std::string("malformed JSON: ") + e.what(), "re-run the command that wrote it");
-  }
-}
-
-std::vector<double> NumbersOf(const nlohmann::json& j, const std::string& key) {
-  std::vector<double> out;
-  if (!j.is_object() || !j.contains(key) || !j.at(key).is_array()) return out;
-  for (const auto& v : j.at(key)) out.push_back(v.is_number() ? v.get<double>() : std::nan(""));
-  return out;
-}
-
 namespace {
-ErrorSeries SeriesFromJson(const nlohmann::json& j) {
-  ErrorSeries s;
-  s.t_s = NumbersOf(j, "t_s");
-  s.distance_m = NumbersOf(j, "distance_m");
-  s.ate_m = NumbersOf(j, "ate_m");
-  s.heading_error_deg = NumbersOf(j, "heading_error_deg");
-  s.nees = NumbersOf(j, "nees");
-  const std::vector<double> band = NumbersOf(j, "nees_band_95");
-  if (band.size() == 2) {
-    s.nees_band_lo = band[0];
-    s.nees_band_hi = band[1];
-  }
-  if (j.contains("rpe") && j.at("rpe").is_object()) {
-    s.rpe_distance_m = NumbersOf(j.at("rpe"), "distance_m");
-    s.rpe_trans_m = NumbersOf(j.at("rpe"), "trans_m");
-    s.rpe_rot_deg = NumbersOf(j.at("rpe"), "rot_deg");
-  }
-  return s;
-}
-
 template <typename F>
 auto Parsed(const std::string& path, F&& parse) {
   try {
@@ -88,14 +46,14 @@ RunFolder ReadRunFolder(const std::string& dir) {
   for (const auto& [name, entry] : run.metrics.at("algorithms").items()) {
     AlgorithmResult a;
     a.name = name;
-    a.metrics = entry;
-    a.status = entry.is_object() ? entry.value("status", std::string("ok")) : "ok";
+    a.metrics = MetricsFromJson(entry, metrics_path);
     const fs::path tum = fs::path(dir) / (name + ".tum");
     if (fs::exists(tum)) a.trajectory = ReadTum(tum.string());
     const fs::path est = fs::path(dir) / "estimates" / (name + ".json");
     if (fs::exists(est)) a.estimate = Parsed(est.string(), [](const nlohmann::json& j) { return EstimateFromJson(j); });
     const fs::path ser = fs::path(dir) / "series" / (name + ".json");
-    if (fs::exists(ser)) a.series = Parsed(ser.string(), [](const nlohmann::json& j) { return SeriesFromJson(j); });
+    if (fs::exists(ser))
+      a.series = Parsed(ser.string(), [&](const nlohmann::json& j) { return ErrorSeriesFromJson(j, ser.string()); });
     run.algorithms.push_back(std::move(a));
   }
   return run;

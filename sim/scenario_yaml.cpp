@@ -59,23 +59,9 @@ const std::string* OverrideOf(const YamlSource& src, const YAML::Node& node) {
   return nullptr;
 }
 
-std::string Format(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-std::string Describe(const Range& r) {
-  std::string lo = r.min > -1e299 ? (r.min_open ? "> " : ">= ") + Format(r.min) : "";
-  std::string hi = r.max < 1e299 ? (r.max_open ? "< " : "<= ") + Format(r.max) : "";
-  if (!lo.empty() && !hi.empty()) return lo + " and " + hi;
-  return lo.empty() ? hi : lo;
-}
-
 void CheckRange(const YamlSource& src, const YAML::Node& value, const std::string& key, double v,
                 const Range& r) {
-  bool ok = (r.min_open ? v > r.min : v >= r.min) && (r.max_open ? v < r.max : v <= r.max);
-  if (!ok)
+  if (!InRange(r, v))
     Fail(src, value, key + " = " + value.Scalar() + " is out of range", "set " + key + " to a value " + Describe(r));
 }
 
@@ -118,9 +104,6 @@ void CheckMap(const YamlSource& src, const YAML::Node& node, const std::string& 
   }
 }
 
-Range AtLeast(double v) { return Range{.min = v}; }
-Range Above(double v) { return Range{.min = v, .min_open = true}; }
-Range Between(double lo, double hi) { return Range{.min = lo, .max = hi}; }
 
 double ReadDouble(const YamlSource& src, const YAML::Node& value, const std::string& key, Range range) {
   ExpectScalar(src, value, key, "a number");

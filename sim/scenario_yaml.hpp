@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 #include <string>
+
+#include "core/range.hpp"
 #include <vector>
 
 #include "sim/scenario.hpp"
@@ -33,16 +35,6 @@ int LineOf(const YamlSource& src, const YAML::Node& node);
 /// `node` must be a mapping whose keys are all in the schema at `path`.
 void CheckMap(const YamlSource& src, const YAML::Node& node, const std::string& path);
 
-/// Closed/open bounds for a number; defaults accept any finite value.
-struct Range {
-  double min = -1e300;
-  double max = 1e300;
-  bool min_open = false;  ///< true: value must be > min
-  bool max_open = false;  ///< true: value must be < max
-};
-Range AtLeast(double v);
-Range Above(double v);
-Range Between(double lo, double hi);
 
 double ReadDouble(const YamlSource& src, const YAML::Node& value, const std::string& key, Range range);
 int ReadInt(const YamlSource& src, const YAML::Node& value, const std::string& key, Range range);

@@ -1,26 +1,54 @@
 #include "slam/ekf_slam.hpp"
 
+#include "core/chi_square.hpp"
+#include "core/error.hpp"
 #include "core/odometry_model.hpp"
+#include "slam/landmark_merge.hpp"
 #include "slam/range_bearing.hpp"
 
 namespace slambox {
 
-void BindParams(EkfSlamConfig& c, ParamBinder& b) {
-  b.Bind("association", c.association, {"auto", "known", "nn", "jcbb"},
-         "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");
-  b.Bind("gate_accept_chi2", c.gate_accept_chi2, "chi2", "accept the nearest landmark if its d^2 is below");
-  b.Bind("gate_new_chi2", c.gate_new_chi2, "chi2", "new landmark if every d^2 is above (ambiguous in between)");
-  b.Bind("jcbb_joint_probability", c.jcbb_joint_probability, "-", "JCBB joint compatibility confidence");
-  b.Bind("jcbb_max_nodes", c.jcbb_max_nodes, "nodes", "JCBB search budget per scan");
-  b.Bind("confirm_sightings", c.confirm_sightings, "scans", "sightings that confirm a tentative landmark");
-  b.Bind("tentative_max_misses", c.tentative_max_misses, "scans", "misses in view that delete a tentative landmark");
-  b.Bind("visibility_margin_m", c.visibility_margin_m, "m", "a landmark is expected in view this far inside range_max");
-  b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
-  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
-  b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance");
+const EnumNames<EkfAssociation>& EkfAssociationNames() {
+  static const EnumNames<EkfAssociation> names = {{EkfAssociation::kAuto, "auto"},
+                                                  {EkfAssociation::kKnown, "known"},
+                                                  {EkfAssociation::kNearestNeighbour, "nn"},
+                                                  {EkfAssociation::kJcbb, "jcbb"}};
+  return names;
 }
 
-EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {}
+void BindParams(EkfSlamConfig& c, ParamBinder& b) {
+  b.Bind("association", c.association, EkfAssociationNames(),
+         "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");
+  b.Bind("gate_accept_chi2", c.gate_accept_chi2, "chi2", "accept the nearest landmark if its d^2 is below", Above(0));
+  b.Bind("gate_new_chi2", c.gate_new_chi2, "chi2", "new landmark if every d^2 is above (ambiguous in between)",
+         Above(0));
+  b.Bind("jcbb_joint_probability", c.jcbb_joint_probability, "-", "JCBB joint compatibility confidence",
+         Range{.min = 0, .max = 1, .min_open = true, .max_open = true});
+  b.Bind("jcbb_max_nodes", c.jcbb_max_nodes, "nodes", "JCBB search budget per scan", AtLeast(1));
+  b.Bind("confirm_sightings", c.confirm_sightings, "scans", "sightings that confirm a tentative landmark", AtLeast(1));
+  b.Bind("tentative_max_misses", c.tentative_max_misses, "scans", "misses in view that delete a tentative landmark",
+         AtLeast(1));
+  b.Bind("tentative_max_age_s", c.tentative_max_age_s, "s",
+         "a tentative landmark not confirmed this long after its creation is deleted", Above(0));
+  b.Bind("visibility_margin_m", c.visibility_margin_m, "m", "a landmark is expected in view this far inside range_max",
+         AtLeast(0));
+  b.Bind("merge_probability", c.merge_probability, "-",
+         "merge two landmarks whose difference d^2 is below this chi2(2) quantile, unless seen in one scan (0 = never)",
+         Range{.min = 0, .max = 1, .max_open = true});
+  b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
+  b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance", Above(0));
+  b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
+}
+
+EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {
+  // ekf-slam's own settings, and graphslam's front end (same field names).
+  auto fail = [](const std::string& field, const std::string& problem, const std::string& fix) {
+    throw InputError("--set algo.ekf-slam." + field + " (or algo.graphslam." + field + ")", 0, problem, fix);
+  };
+  if (!(config.merge_probability >= 0 && config.merge_probability < 1))
+    fail("merge_probability", "must lie in [0, 1)", "e.g. 0.99, or 0 to never merge");
+  if (!(config.tentative_max_age_s > 0)) fail("tentative_max_age_s", "must be positive", "e.g. 2");
+}
 
 void EkfSlam::Start(const StreamHeader& header) {
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
@@ -28,10 +56,13 @@ void EkfSlam::Start(const StreamHeader& header) {
   R_ = config_.observation_noise_scale * ObservationCovariance(sensor);
   range_max_m_ = sensor.range_max_m;
   half_fov_rad_ = sensor.fov_deg * M_PI / 360.0;
-  known_ids_ = config_.association == "known" || (config_.association == "auto" && sensor.known_ids);
+  known_ids_ = config_.association == EkfAssociation::kKnown ||
+               (config_.association == EkfAssociation::kAuto && sensor.known_ids);
   state_ = MakeInitialState(header.start_pose);
   tracks_.clear();
   key_of_id_.clear();
+  merged_into_.clear();
+  co_observed_.clear();
   next_key_ = 0;
   prior_position_ = header.start_pose.translation();
   estimate_ = Estimate{};
@@ -80,7 +111,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
                                config_.jcbb_max_nodes};
   std::vector<int> target;
   if (known_ids_) target = AssociateKnownIds(obs);
-  else if (config_.association == "nn") target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
+  else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
   else target = AssociateJcbb(state_, z, R_, gates).landmark;
 
   // One batched update with every matched observation, linearized at the current
@@ -98,6 +129,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
     matched[j] = true;
     keys[i] = tracks_[j].key;
     ++tracks_[j].sightings;
+    ++tracks_[j].existence;
   }
   const EkfUpdateResult update = UpdateState(state_, lin, R_);
   if (!update.applied && !lin.empty()) Record(event.t_s, "update_rejected", 1.0);
@@ -107,14 +139,20 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
     if (target[i] == Association::kDiscard) ++discarded;
     if (target[i] != Association::kNew) continue;
     const int j = AddLandmark(state_, z[i], R_);
-    LandmarkTrack track{next_key_++, known_ids_ ? obs[i].id : -1, 1, 0, known_ids_ || config_.confirm_sightings <= 1,
-                        state_.Landmark(j)};
+    LandmarkTrack track{next_key_++, known_ids_ ? obs[i].id : -1, 1, 0, 1,
+                        known_ids_ || config_.confirm_sightings <= 1, event.t_s, state_.Landmark(j)};
     if (known_ids_) key_of_id_[obs[i].id] = track.key;
     keys[i] = track.key;
     tracks_.push_back(track);
     ++created;
   }
-  ManageTentative(matched);
+  // Landmarks seen in one scan are distinct for the rest of the run (never merged).
+  if (!known_ids_)
+    for (size_t a = 0; a < keys.size(); ++a)
+      for (size_t b = a + 1; b < keys.size(); ++b)
+        if (keys[a] >= 0 && keys[b] >= 0 && keys[a] != keys[b]) co_observed_.insert(std::minmax(keys[a], keys[b]));
+  ManageExistence(matched, event.t_s);
+  const int merged = known_ids_ ? 0 : MergeDuplicates();
 
   int confirmed = 0;
   for (const auto& t : tracks_) confirmed += t.confirmed ? 1 : 0;
@@ -126,6 +164,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   Record(event.t_s, "num_tentative", static_cast<double>(tracks_.size()) - confirmed);
   Record(event.t_s, "new_landmarks", created);
   Record(event.t_s, "discarded_observations", discarded);
+  if (!known_ids_) Record(event.t_s, "merged_landmarks", merged);
   if (update.applied) {
     Record(event.t_s, "nis", update.nis);
     Record(event.t_s, "nis_dof", update.dof);
@@ -133,22 +172,71 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   return keys;
 }
 
-void EkfSlam::ManageTentative(const std::vector<bool>& matched) {
+void EkfSlam::ManageExistence(const std::vector<bool>& matched, double t_s) {
+  if (known_ids_) return;  // a known id names a real landmark: never removed
   const SE2 pose = state_.Pose();
   for (int j = static_cast<int>(matched.size()) - 1; j >= 0; --j) {
     LandmarkTrack& t = tracks_[j];
-    if (t.confirmed) continue;
-    if (matched[j]) {
-      t.confirmed = t.sightings >= config_.confirm_sightings;
+    if (matched[j]) t.confirmed = t.confirmed || t.sightings >= config_.confirm_sightings;
+    if (!t.confirmed && t_s - t.created_t_s > config_.tentative_max_age_s) {
+      RemoveLandmark(state_, j);
+      tracks_.erase(tracks_.begin() + j);
       continue;
     }
+    if (matched[j]) continue;
     const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
     const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
-    if (in_view && ++t.misses >= config_.tentative_max_misses) {
+    if (!in_view) continue;
+    ++t.misses;
+    --t.existence;
+    const bool remove = t.confirmed ? t.existence <= 0 : t.misses >= config_.tentative_max_misses;
+    if (remove) {
       RemoveLandmark(state_, j);
       tracks_.erase(tracks_.begin() + j);
     }
   }
+}
+
+int EkfSlam::MergeDuplicates() {
+  if (!(config_.merge_probability > 0.0)) return 0;
+  const double gate = ChiSquareQuantile(config_.merge_probability, 2.0);
+  const Eigen::Vector2d robot = state_.Pose().translation();
+  int merged = 0;
+  // Only around the robot: a duplicate becomes identical to its twin when the loop
+  // closes, i.e. while the robot sees them (this bounds the work to the local map).
+  for (bool again = true; again;) {
+    again = false;
+    std::vector<int> near;
+    for (int j = 0; j < state_.NumLandmarks(); ++j)
+      if ((state_.Landmark(j) - robot).norm() < range_max_m_) near.push_back(j);
+    for (size_t p = 0; p < near.size() && !again; ++p)
+      for (size_t q = p + 1; q < near.size() && !again; ++q) {
+        const int a = near[p], b = near[q];  // a < b: a is the older landmark and is kept
+        if (SeenTogether(tracks_[a].key, tracks_[b].key)) continue;
+        if (LandmarkDifferenceChi2(state_, a, b) >= gate) continue;
+        if (!MergeLandmarks(state_, a, b)) continue;
+        LandmarkTrack& keep = tracks_[a];
+        const LandmarkTrack& gone = tracks_[b];
+        keep.sightings += gone.sightings;
+        keep.existence += gone.existence;
+        keep.confirmed = keep.confirmed || gone.confirmed || keep.sightings >= config_.confirm_sightings;
+        merged_into_[gone.key] = keep.key;
+        // What was seen together with the removed landmark was seen together with the kept one.
+        for (const auto& [k1, k2] : std::vector<std::pair<int, int>>(co_observed_.begin(), co_observed_.end())) {
+          if (k1 == gone.key && k2 != keep.key) co_observed_.insert(std::minmax(keep.key, k2));
+          if (k2 == gone.key && k1 != keep.key) co_observed_.insert(std::minmax(keep.key, k1));
+        }
+        tracks_.erase(tracks_.begin() + b);
+        ++merged;
+        again = true;
+      }
+  }
+  return merged;
+}
+
+int EkfSlam::ResolveKey(int key) const {
+  for (auto it = merged_into_.find(key); it != merged_into_.end(); it = merged_into_.find(key)) key = it->second;
+  return key;
 }
 
 void EkfSlam::OnLandmarks(const LandmarkEvent& event) { ProcessLandmarks(event); }

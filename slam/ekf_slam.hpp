@@ -4,9 +4,16 @@
 // batched Joseph-form update, unseen landmarks are added through the inverse observation
 // model. Association by known ids, nearest neighbour with two gates, or JCBB; with
 // unknown ids a new landmark is tentative until seen `confirm_sightings` times and is
-// removed if it is missed `tentative_max_misses` times first (so clutter does not
-// become map). Optional FEJ-EKF (Huang, Mourikis & Roumeliotis 2008).
+// removed if it is missed `tentative_max_misses` times first or not confirmed within
+// `tentative_max_age_s` (so clutter does not become map, nor stay in the state out of view
+// where a later real observation could be paired with it). A confirmed landmark keeps an existence count (+1 seen, -1 missed while
+// predicted inside range and field of view) and is removed at 0. Two landmarks that
+// become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
+// ever seen in one scan (then they are two landmarks, however close). Optional FEJ-EKF
+// (Huang, Mourikis & Roumeliotis 2008).
+#include <algorithm>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -16,16 +23,23 @@
 
 namespace slambox {
 
+/// Data association: known ids if the sensor reports them, else JCBB (auto); known ids;
+/// nearest neighbour; joint compatibility branch and bound.
+enum class EkfAssociation { kAuto, kKnown, kNearestNeighbour, kJcbb };
+/// auto, known, nn, jcbb.
+const EnumNames<EkfAssociation>& EkfAssociationNames();
+
 struct EkfSlamConfig {
-  /// "auto": known ids if the sensor reports them, else JCBB; or "known", "nn", "jcbb".
-  std::string association = "auto";
+  EkfAssociation association = EkfAssociation::kAuto;
   double gate_accept_chi2 = 9.21;       ///< [chi2, 2 dof] accept the nearest landmark below this d^2
   double gate_new_chi2 = 25.0;          ///< [chi2, 2 dof] new landmark if every d^2 is above this
   double jcbb_joint_probability = 0.99; ///< [-] JCBB joint compatibility confidence
   int jcbb_max_nodes = 20000;           ///< [nodes] JCBB search budget per scan
   int confirm_sightings = 3;            ///< [scans] sightings that confirm a tentative landmark (unknown ids)
   int tentative_max_misses = 3;         ///< [scans] misses in view that delete a tentative landmark
+  double tentative_max_age_s = 2.0;     ///< [s] a tentative landmark not confirmed this long after its creation is deleted
   double visibility_margin_m = 0.5;     ///< [m] a landmark counts as missed only this far inside range_max
+  double merge_probability = 0.99;      ///< [-] merge two landmarks whose difference d^2 is below this chi2 quantile (0 = never)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
@@ -38,7 +52,9 @@ struct LandmarkTrack {
   int id = -1;           ///< true id with known association, else -1
   int sightings = 0;
   int misses = 0;
+  int existence = 1;     ///< +1 per sighting, -1 per miss in view; a confirmed landmark is removed at 0
   bool confirmed = false;
+  double created_t_s = 0.0;  ///< when it was created (tentative landmarks expire)
   Eigen::Vector2d first_estimate = Eigen::Vector2d::Zero();  ///< FEJ linearization point
 };
 
@@ -55,10 +71,14 @@ class EkfSlam : public SlamModule {
   std::vector<int> ProcessLandmarks(const LandmarkEvent& event);
   const EkfSlamState& state() const { return state_; }
   const std::vector<LandmarkTrack>& tracks() const { return tracks_; }
+  /// The key a landmark's observations now belong to: itself, or the landmark it was merged into.
+  int ResolveKey(int key) const;
 
  private:
   std::vector<int> AssociateKnownIds(const std::vector<LandmarkObservation>& obs) const;
-  void ManageTentative(const std::vector<bool>& matched);
+  void ManageExistence(const std::vector<bool>& matched, double t_s);
+  int MergeDuplicates();
+  bool SeenTogether(int key_a, int key_b) const { return co_observed_.count(std::minmax(key_a, key_b)) > 0; }
   void Record(double t_s, const std::string& name, double value) {
     estimate_.diagnostics[name].emplace_back(t_s, value);
   }
@@ -72,6 +92,8 @@ class EkfSlam : public SlamModule {
   EkfSlamState state_;
   std::vector<LandmarkTrack> tracks_;
   std::map<int, int> key_of_id_;  ///< true id -> key (known association)
+  std::map<int, int> merged_into_;  ///< removed key -> key it was merged into
+  std::set<std::pair<int, int>> co_observed_;  ///< (smaller, larger) keys seen in one scan
   int next_key_ = 0;
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction
   Estimate estimate_;

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <tuple>
 
@@ -25,7 +26,10 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
   b.Bind("report_min_counter", c.report_min_counter, "-", "unknown ids: report landmarks whose counter reached this");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
-  b.Bind("trajectory", c.trajectory, {"best", "mean", "path_mean"},
+  static const EnumNames<FastSlamTrajectory> kTrajectoryNames = {{FastSlamTrajectory::kBest, "best"},
+                                                                  {FastSlamTrajectory::kMean, "mean"},
+                                                                  {FastSlamTrajectory::kPathMean, "path_mean"}};
+  b.Bind("trajectory", c.trajectory, kTrajectoryNames,
          "best particle's path | filtered weighted mean | weighted mean of the final particles' paths");
 }
 void BindParams(FastSlam2Config& c, ParamBinder& b) { BindParams(static_cast<FastSlamConfig&>(c), b); }
@@ -42,8 +46,6 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
   if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
   if (c.snapshot_period_s < 0) fail("snapshot_period_s", "must not be negative", "0 disables snapshots");
-  if (c.trajectory != "best" && c.trajectory != "mean" && c.trajectory != "path_mean")
-    fail("trajectory", "unknown choice '" + c.trajectory + "'", "use best, mean or path_mean");
   if (c.visibility_margin_m < 0 || c.candidate_margin_m < 0) fail("visibility_margin_m", "margins must not be negative", "e.g. 0.5");
 }
 
@@ -226,19 +228,44 @@ std::vector<PoseEstimate> FastSlam::PathMean() const {
   return out;
 }
 
+double FastSlam::CoalescedUntil() const {
+  // Walk every final particle's path back in step (newest first) to the first node they
+  // all share: their most recent common ancestor. -1 if there is none.
+  std::vector<const PathNode*> at;
+  for (const FastSlamParticle& p : particles_) at.push_back(p.path.get());
+  while (!at.empty()) {
+    double newest = -std::numeric_limits<double>::infinity();
+    for (const PathNode* n : at) {
+      if (n == nullptr) return -1.0;
+      newest = std::max(newest, n->t_s);
+    }
+    if (std::all_of(at.begin(), at.end(), [&](const PathNode* n) { return n == at.front(); })) return newest;
+    for (const PathNode*& n : at)
+      if (n->t_s == newest) n = n->parent.get();
+  }
+  return -1.0;
+}
+
 Estimate FastSlam::Finish() {
   if (particles_.empty()) return std::move(estimate_);
   const FastSlamParticle& best = particles_[BestParticle()];
-  if (config_.trajectory == "mean") {
+  if (config_.trajectory == FastSlamTrajectory::kMean) {
     estimate_.trajectory = cloud_;
-  } else if (config_.trajectory == "path_mean") {
+  } else if (config_.trajectory == FastSlamTrajectory::kPathMean) {
     estimate_.trajectory = PathMean();
   } else {  // the best particle's ancestry, with the cloud's covariance at the same times
+    // Where every final particle descends from one pose node the set holds one path: the
+    // filtered cloud's covariance at that time says nothing about the error of this
+    // (smoothed) path, so those poses get no covariance (no confident NEES from a
+    // depleted set; Bailey et al. 2006).
+    const double coalesced_until_s = CoalescedUntil();
+    estimate_.diagnostics["coalesced_until_s"].emplace_back(best.path ? best.path->t_s : 0.0, coalesced_until_s);
     size_t k = 0;
     for (const PathNode* n : PathPoses(best.path)) {
       while (k < cloud_.size() && cloud_[k].t_s < n->t_s) ++k;
       PoseEstimate e{n->t_s, n->pose, Eigen::Matrix3d::Zero(), false};
-      if (k < cloud_.size() && cloud_[k].t_s == n->t_s) e.covariance = cloud_[k].covariance, e.has_covariance = true;
+      if (k < cloud_.size() && cloud_[k].t_s == n->t_s && n->t_s > coalesced_until_s)
+        e.covariance = cloud_[k].covariance, e.has_covariance = true;
       estimate_.trajectory.push_back(e);
     }
   }

@@ -8,7 +8,9 @@
 // end (its ancestry's poses at every odometry event; ties on the weight are broken by
 // the lineage's total likelihood), with, at each time, the covariance of the weighted
 // particle cloud (plus the mean of the 2.0 proposal priors) around the weighted mean,
-// for NEES. `trajectory = mean` outputs the filtered weighted mean pose instead,
+// for NEES, only after the time where all final particles' paths coalesce (before it the
+// set holds one path and no covariance is reported; diagnostic coalesced_until_s).
+// `trajectory = mean` outputs the filtered weighted mean pose instead,
 // `path_mean` the weighted mean of the final particles' ancestral paths. Landmarks are
 // the best particle's map. Diagnostics per landmark scan: neff (before resampling),
 // distinct_ancestors (initial particles with living descendants), resampled (0/1),
@@ -24,6 +26,10 @@
 
 namespace slambox {
 
+/// Estimate::trajectory: the best particle's path, the filtered weighted mean pose, or the
+/// weighted mean of the final particles' ancestral paths.
+enum class FastSlamTrajectory { kBest, kMean, kPathMean };
+
 struct FastSlamConfig {
   int particles = 100;  ///< M
   /// p0 is the density N(nu; 0, R) of an innovation at this squared Mahalanobis distance
@@ -37,7 +43,7 @@ struct FastSlamConfig {
   int report_min_counter = 10;       ///< unknown ids: report landmarks whose counter reached this (10 Hz: ~1 s net sightings)
   double motion_noise_scale = 1.0;   ///< factor on the odometry model's covariance
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
-  std::string trajectory = "best";   ///< best | mean | path_mean: what goes into Estimate::trajectory
+  FastSlamTrajectory trajectory = FastSlamTrajectory::kBest;  ///< what goes into Estimate::trajectory
 };
 void BindParams(FastSlamConfig& c, ParamBinder& b);
 
@@ -63,6 +69,8 @@ class FastSlam : public SlamModule {
   void RecordCloud(double t_s);
   void Diagnose(double t_s, const std::string& name, double value) { estimate_.diagnostics[name].emplace_back(t_s, value); }
   int BestParticle() const;
+  /// Time of the newest pose node that every particle's path shares (-1: none).
+  double CoalescedUntil() const;
   std::vector<PoseEstimate> PathMean() const;
 
   FastSlamConfig config_;

@@ -7,13 +7,14 @@ namespace slambox {
 
 void BindParams(GraphSlamConfig& c, ParamBinder& b) {
   b.Bind("keyframe_every_odometry", c.keyframe_every_odometry, "steps",
-         "a landmark scan makes a keyframe after this many odometry steps (0 = off)");
+         "a landmark scan makes a keyframe after this many odometry steps (0 = off)", AtLeast(0));
   b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m",
-         "... or after this much travel (0 = off; both off = every scan)");
-  b.Bind("solve_every_keyframes", c.solve_every_keyframes, "keyframes", "also solve during the run (0 = at the end)");
-  b.Bind("max_iterations", c.max_iterations, "-", "Ceres iterations per solve");
+         "... or after this much travel (0 = off; both off = every scan)", AtLeast(0));
+  b.Bind("solve_every_keyframes", c.solve_every_keyframes, "keyframes", "also solve during the run (0 = at the end)",
+         AtLeast(0));
+  b.Bind("max_iterations", c.max_iterations, "-", "Ceres iterations per solve", AtLeast(1));
   b.Bind("compute_covariance", c.compute_covariance, "-", "marginal covariances from ceres::Covariance");
-  b.Bind("huber_scale", c.huber_scale, "sigma", "Huber loss on range-bearing residuals (0 = none)");
+  b.Bind("huber_scale", c.huber_scale, "sigma", "Huber loss on range-bearing residuals (0 = none)", AtLeast(0));
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
 }
 
@@ -21,10 +22,11 @@ void GraphSlam::Start(const StreamHeader& header) {
   frontend_.Start(header);
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
   const LandmarkSensorConfig sensor = header.sensors.landmarks.value_or(LandmarkSensorConfig{});
-  known_ids_ = config_.frontend.association == "known" || (config_.frontend.association == "auto" && sensor.known_ids);
+  known_ids_ = config_.frontend.association == EkfAssociation::kKnown ||
+               (config_.frontend.association == EkfAssociation::kAuto && sensor.known_ids);
   graph_ = LandmarkGraph{};
   graph_.observation_covariance = config_.frontend.observation_noise_scale * ObservationCovariance(sensor);
-  graph_.poses.push_back(header.start_pose.vector());
+  graph_.poses.push_back(header.start_pose);
   keyframe_t_s_ = {0.0};
   samples_.clear();
   solved_landmarks_.clear();
@@ -65,9 +67,8 @@ void GraphSlam::AddKeyframe(double t_s) {
   graph_.odometry.push_back({from, T_keyframe_robot_, covariance_since_keyframe_});
   // Initial guess: the last keyframe's (possibly optimized) pose composed with the
   // odometry when solving periodically, else the front end's filtered pose.
-  const SE2 guess = config_.solve_every_keyframes > 0 ? SE2::FromVector(graph_.poses[from]) * T_keyframe_robot_
-                                                      : frontend_.state().Pose();
-  graph_.poses.push_back(guess.vector());
+  graph_.poses.push_back(config_.solve_every_keyframes > 0 ? graph_.poses[from] * T_keyframe_robot_
+                                                          : frontend_.state().Pose());
   keyframe_t_s_.push_back(t_s);
   if (!samples_.empty() && samples_.back().t_s == t_s)  // this odometry event is the keyframe itself
     samples_.back() = {t_s, from + 1, SE2(), Eigen::Matrix3d::Zero()};
@@ -98,6 +99,8 @@ LandmarkGraphSolution GraphSlam::Solve(bool with_covariance) {
   // Landmarks: the front end's confirmed ones (tentative and deleted ones are left out,
   // and so are their observations); the guess is the last solution or the EKF's mean.
   graph_.landmarks.clear();
+  // Observations of a landmark the front end merged into another now constrain that one.
+  for (RangeBearingConstraint& o : graph_.observations) o.landmark = frontend_.ResolveKey(o.landmark);
   const auto& tracks = frontend_.tracks();
   for (size_t j = 0; j < tracks.size(); ++j) {
     if (!tracks[j].confirmed) continue;
@@ -126,19 +129,15 @@ Estimate GraphSlam::Finish() {
     if (front.diagnostics.count(name)) d[std::string("frontend_") + name] = front.diagnostics.at(name);
 
   // Trajectory: keyframe 0, then every odometry event through its keyframe. For
-  // T = T_k * T_kr: Sigma = J_k Sigma_k J_k^T + J_r Sigma_kr J_r^T (independent parts).
+  // T = T_k * T_kr with independent parts: core/se2's ComposeCovariance.
   const bool cov = s.covariance_ok;
-  estimate_.trajectory.push_back({0.0, SE2::FromVector(graph_.poses[0]), Eigen::Matrix3d::Zero(), cov});
+  estimate_.trajectory.push_back({0.0, graph_.poses[0], Eigen::Matrix3d::Zero(), cov});
   for (const OdometrySample& sample : samples_) {
-    const SE2 T_k = SE2::FromVector(graph_.poses[sample.keyframe]);
+    const SE2& T_k = graph_.poses[sample.keyframe];
     const SE2& T_kr = sample.T_keyframe_robot;
-    const double c = std::cos(T_k.theta), sn = std::sin(T_k.theta);
-    Eigen::Matrix3d J_k, J_r;
-    J_k << 1, 0, -sn * T_kr.x - c * T_kr.y, 0, 1, c * T_kr.x - sn * T_kr.y, 0, 0, 1;
-    J_r << c, -sn, 0, sn, c, 0, 0, 0, 1;
-    Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
-    if (cov)
-      P = J_k * s.pose_covariances[sample.keyframe] * J_k.transpose() + J_r * sample.covariance * J_r.transpose();
+    const Eigen::Matrix3d P =
+        cov ? ComposeCovariance(T_k, s.pose_covariances[sample.keyframe], T_kr, sample.covariance)
+            : Eigen::Matrix3d::Zero();
     estimate_.trajectory.push_back({sample.t_s, T_k * T_kr, 0.5 * (P + P.transpose()), cov});
   }
   for (const auto& track : frontend_.tracks()) {
@@ -151,7 +150,7 @@ Estimate GraphSlam::Finish() {
   }
   for (size_t i = 0; i < graph_.poses.size(); ++i) {
     estimate_.pose_graph.node_t_s.push_back(keyframe_t_s_[i]);
-    estimate_.pose_graph.nodes.push_back(SE2::FromVector(graph_.poses[i]));
+    estimate_.pose_graph.nodes.push_back(graph_.poses[i]);
     if (i > 0) estimate_.pose_graph.edges.push_back({static_cast<int>(i) - 1, static_cast<int>(i), false, true});
   }
   return std::move(estimate_);

@@ -3,7 +3,8 @@
 // (Thrun, Prob. Robotics, Ch. 11) solved with Ceres (slam/landmark_graph.hpp).
 // An embedded EKF-SLAM runs alongside as the front end: it associates observations
 // (known ids, nearest neighbour or JCBB, with tentative landmarks) and gives the initial
-// guess of every keyframe and landmark. A keyframe is made at a landmark scan after
+// guess of every keyframe and landmark; landmarks it merges or removes are merged or
+// removed in the graph too. A keyframe is made at a landmark scan after
 // enough odometry; odometry between keyframes becomes one between-factor whose
 // covariance is the motion model's, propagated over the steps. The batch solve runs in
 // Finish (and optionally every K keyframes); marginal covariances come from

@@ -10,23 +10,6 @@
 
 namespace slambox {
 
-IcpMetric ParseIcpMetric(const std::string& name) {
-  if (name == "point-to-point") return IcpMetric::kPointToPoint;
-  if (name == "point-to-line") return IcpMetric::kPointToLine;
-  throw InputError("icp metric", 0, "unknown metric '" + name + "'", "use point-to-point or point-to-line");
-}
-IcpCorrespondence ParseIcpCorrespondence(const std::string& name) {
-  if (name == "kdtree") return IcpCorrespondence::kKdTree;
-  if (name == "projection") return IcpCorrespondence::kProjection;
-  throw InputError("icp correspondence", 0, "unknown correspondence '" + name + "'", "use kdtree or projection");
-}
-IcpRobustKernel ParseIcpRobustKernel(const std::string& name) {
-  if (name == "none") return IcpRobustKernel::kNone;
-  if (name == "huber") return IcpRobustKernel::kHuber;
-  if (name == "geman-mcclure") return IcpRobustKernel::kGemanMcClure;
-  throw InputError("icp robust kernel", 0, "unknown kernel '" + name + "'", "use none, huber or geman-mcclure");
-}
-
 double RobustWeight(IcpRobustKernel kernel, double e, double scale) {
   const double a = std::abs(e);
   switch (kernel) {

@@ -39,9 +39,6 @@ struct IcpConfig {
   double sigma_residual_m = 0.0;             ///< [m] residual std for the covariance (0 = from RMS)
 };
 /// Names used by modules' string parameters ("point-to-line", "kdtree", "huber", ...).
-IcpMetric ParseIcpMetric(const std::string& name);
-IcpCorrespondence ParseIcpCorrespondence(const std::string& name);
-IcpRobustKernel ParseIcpRobustKernel(const std::string& name);
 
 struct IcpResult {
   SE2 T_target_source;

@@ -10,7 +10,7 @@
 namespace slambox {
 
 void BindParams(IcpLocalizationConfig& c, ParamBinder& b) {
-  BindIcpParams(c.icp, c.icp_choices, b);
+  BindIcpParams(c.icp, b);
   b.Bind("map_spacing_m", c.map_spacing_m, "m", "spacing of the map points sampled along the walls");
   b.Bind("max_correction_m", c.max_correction_m, "m", "reject an ICP result farther than this from the prediction");
   b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "covariance: no scan more certain than this (translation)");
@@ -18,7 +18,7 @@ void BindParams(IcpLocalizationConfig& c, ParamBinder& b) {
 }
 
 IcpLocalization::IcpLocalization(const IcpLocalizationConfig& config)
-    : config_(config), icp_(ResolveIcpConfig(config.icp, config.icp_choices, "icp-localization")) {
+    : config_(config), icp_(config.icp) {
   auto positive = [](double v, const char* name) {
     if (!(v > 0))
       throw InputError(std::string("--set algo.icp-localization.") + name, 0, "must be > 0", "give a positive value");

@@ -13,8 +13,9 @@
 namespace slambox {
 
 struct IcpLocalizationConfig {
-  IcpConfig icp{.correspondence = IcpCorrespondence::kKdTree, .max_correspondence_m = 0.3};
-  IcpChoices icp_choices{.correspondence = "kdtree", .robust_kernel = "geman-mcclure"};  ///< movers are not in the map
+  /// Redescending weights (Geman-McClure): movers are not in the map.
+  IcpConfig icp{.correspondence = IcpCorrespondence::kKdTree, .robust_kernel = IcpRobustKernel::kGemanMcClure,
+                .max_correspondence_m = 0.3};
   double map_spacing_m = 0.05;           ///< [m] spacing of the map points along walls
   double max_correction_m = 0.5;         ///< [m] a larger ICP correction of the prediction is rejected
   double info_cap_sigma_xy_m = 0.005;    ///< [m] no scan more certain than this, translation

@@ -8,7 +8,7 @@
 namespace slambox {
 
 void BindParams(IcpOdometryConfig& c, ParamBinder& b) {
-  BindIcpParams(c.icp, c.icp_choices, b);
+  BindIcpParams(c.icp, b);
   b.Bind("adaptive_gate", c.adaptive_gate, "-", "KISS-ICP adaptive correspondence gate (3 sigma of model deviation)");
   b.Bind("local_map_scans", c.local_map_scans, "scans", "0 = scan-to-scan; N = register to a map of the last N scans");
   b.Bind("local_map_voxel_m", c.local_map_voxel_m, "m", "voxel size of the local map");
@@ -19,7 +19,7 @@ void BindParams(IcpOdometryConfig& c, ParamBinder& b) {
 }
 
 IcpOdometry::IcpOdometry(const IcpOdometryConfig& config)
-    : config_(config), icp_(ResolveIcpConfig(config.icp, config.icp_choices, "icp-odometry")) {
+    : config_(config), icp_(config.icp) {
   if (config_.local_map_scans < 0)
     throw InputError("--set algo.icp-odometry.local_map_scans", 0, "must be >= 0", "0 for scan-to-scan");
   if (!(config_.info_cap_sigma_xy_m > 0) || !(config_.info_cap_sigma_theta_deg > 0))

@@ -17,8 +17,8 @@
 namespace slambox {
 
 struct IcpOdometryConfig {
-  IcpConfig icp;
-  IcpChoices icp_choices{.robust_kernel = "geman-mcclure"};  ///< redescending weights: movers do not drag ICP
+  /// Redescending weights (Geman-McClure): movers do not drag ICP.
+  IcpConfig icp{.correspondence = IcpCorrespondence::kProjection, .robust_kernel = IcpRobustKernel::kGemanMcClure};
   bool adaptive_gate = true;      ///< KISS-ICP model-deviation gate instead of max_correspondence_m
   int local_map_scans = 0;        ///< 0 = scan-to-scan; N > 0 = scan-to-map of the last N scans (kd-tree)
   double local_map_voxel_m = 0.05;  ///< [m] voxel size of the local map

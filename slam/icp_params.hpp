@@ -1,6 +1,7 @@
 #pragma once
-// Binds IcpConfig's fields for `--set algo.NAME.FIELD=VALUE`. Enum fields are bound
-// through their names (IcpChoices) and resolved once when the module is built.
+// Binds IcpConfig's fields for `--set algo.NAME.FIELD=VALUE`: the enums through their
+// name tables, the numbers with their allowed ranges (checked once, by the binder, when
+// the module is built).
 #include <string>
 
 #include "core/params.hpp"
@@ -8,15 +9,11 @@
 
 namespace slambox {
 
-struct IcpChoices {
-  std::string metric = "point-to-line";    ///< point-to-point | point-to-line
-  std::string correspondence = "projection";  ///< kdtree | projection
-  std::string robust_kernel = "none";     ///< none | huber | geman-mcclure
-};
+const EnumNames<IcpMetric>& IcpMetricNames();
+const EnumNames<IcpCorrespondence>& IcpCorrespondenceNames();
+const EnumNames<IcpRobustKernel>& IcpRobustKernelNames();
 
-/// Binds every IcpConfig field, names prefixed with `prefix` (e.g. "" or "loop_").
-void BindIcpParams(IcpConfig& icp, IcpChoices& choices, ParamBinder& b, const std::string& prefix = "");
-/// IcpConfig with the enums set from `choices`; throws InputError for invalid values.
-IcpConfig ResolveIcpConfig(IcpConfig icp, const IcpChoices& choices, const std::string& module);
+/// Binds every IcpConfig field, names prefixed with `prefix` (e.g. "" or "loop_icp_").
+void BindIcpParams(IcpConfig& icp, ParamBinder& b, const std::string& prefix = "");
 
 }  // namespace slambox

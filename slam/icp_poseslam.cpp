@@ -10,34 +10,47 @@ namespace slambox {
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 
-RobustKernel ParseKernel(const std::string& name) {
-  if (name == "none") return RobustKernel::kNone;
-  if (name == "huber") return RobustKernel::kHuber;
-  if (name == "cauchy") return RobustKernel::kCauchy;
-  return RobustKernel::kDcs;
-}
+const EnumNames<EdgeInformationSource> kEdgeInformationNames = {{EdgeInformationSource::kHessian, "hessian"},
+                                                             {EdgeInformationSource::kFixed, "fixed"}};
 }  // namespace
 
 void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
-  BindIcpParams(c.icp, c.icp_choices, b);
-  BindIcpParams(c.loop_icp, c.loop_icp_choices, b, "loop_icp_");
+  BindIcpParams(c.icp, b);
+  BindIcpParams(c.loop_icp, b, "loop_icp_");
   b.Bind("adaptive_gate", c.adaptive_gate, "-", "KISS-ICP adaptive correspondence gate for the front end");
-  b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m", "new keyframe after this much translation");
-  b.Bind("keyframe_angle_deg", c.keyframe_angle_deg, "deg", "new keyframe after this much rotation");
-  b.Bind("edge_information", c.edge_information, {"hessian", "fixed"}, "information of ICP edges");
-  b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "cap on Hessian information, translation");
-  b.Bind("info_cap_sigma_theta_deg", c.info_cap_sigma_theta_deg, "deg", "cap on Hessian information, heading");
-  b.Bind("fixed_sigma_xy_m", c.fixed_sigma_xy_m, "m", "fixed edge information, translation");
-  b.Bind("fixed_sigma_theta_deg", c.fixed_sigma_theta_deg, "deg", "fixed edge information, heading");
+  b.Bind("local_map_keyframes", c.local_map_keyframes, "-", "front end registers to this many keyframes before the latest too (0 = latest only)", AtLeast(0));
+  b.Bind("local_map_voxel_m", c.local_map_voxel_m, "m", "voxel size of the front end's local map", Above(0));
+  b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m", "new keyframe after this much translation", Above(0));
+  b.Bind("keyframe_angle_deg", c.keyframe_angle_deg, "deg", "new keyframe after this much rotation", Above(0));
+  b.Bind("edge_information", c.edge_information, kEdgeInformationNames, "information of ICP edges");
+  b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "cap on Hessian information, translation", Above(0));
+  b.Bind("info_cap_sigma_theta_deg", c.info_cap_sigma_theta_deg, "deg", "cap on Hessian information, heading",
+         Above(0));
+  b.Bind("fixed_sigma_xy_m", c.fixed_sigma_xy_m, "m", "fixed edge information, translation", Above(0));
+  b.Bind("fixed_sigma_theta_deg", c.fixed_sigma_theta_deg, "deg", "fixed edge information, heading", Above(0));
   b.Bind("loop_min_travel_m", c.loop.min_travel_m, "m", "path between keyframes before a loop may close");
   b.Bind("loop_search_radius_m", c.loop.search_radius_m, "m", "base loop search radius");
   b.Bind("loop_radius_per_travel", c.loop.radius_per_travel, "m/m", "search radius growth per metre travelled");
+  b.Bind("loop_window_sigmas", c.loop.window_sigmas, "-", "search window: this many std of the relative pose", Above(0));
   b.Bind("loop_max_search_radius_m", c.loop.max_search_radius_m, "m", "search radius cap");
-  b.Bind("loop_max_candidates", c.loop.max_candidates, "-", "ICP verifications per keyframe");
+  b.Bind("loop_search_angle_deg", c.loop.search_angle_deg, "deg", "base angular search window");
+  b.Bind("loop_max_search_angle_deg", c.loop.max_search_angle_deg, "deg", "angular search window cap");
+  b.Bind("loop_max_candidates", c.loop.max_candidates, "-", "loop verifications per keyframe");
+  b.Bind("loop_min_keyframe_gap", c.loop.min_keyframe_gap, "-", "candidates at least this many keyframes apart");
+  b.Bind("loop_submap_keyframes", c.loop_submap_keyframes, "-", "loop target: keyframes each side of the candidate");
+  b.Bind("loop_table_resolution_m", c.loop_table.resolution_m, "m", "correlative search grid cell", Above(0));
+  b.Bind("loop_table_sigma_m", c.loop_table.sigma_m, "m", "correlative score: std of the point-to-map distance", Above(0));
+  b.Bind("loop_table_levels", c.loop_table.levels, "-", "branch-and-bound levels", AtLeast(1));
+  b.Bind("loop_min_score", c.loop_min_score, "-", "correlative score a closure needs");
+  b.Bind("loop_runner_up_radius_m", c.loop_runner_up_radius_m, "m", "ambiguity: runner-up match farther than this from the best");
+  b.Bind("loop_max_runner_up_ratio", c.loop_max_runner_up_ratio, "-", "ambiguity: runner-up score / best score must stay below this");
+  b.Bind("loop_max_match_shift_m", c.loop_max_match_shift_m, "m", "ICP may move the correlative match at most this far");
+  b.Bind("solve_every_keyframes", c.solve_every_keyframes, "-", "re-solve pending small closures after this many keyframes", AtLeast(1));
+  b.Bind("solve_innovation_m", c.solve_innovation_m, "m", "a closure this far off the estimate is solved at once");
   b.Bind("loop_max_rms_m", c.loop.max_rms_m, "m", "loop ICP fitness: max RMS residual");
   b.Bind("loop_min_inlier_ratio", c.loop.min_inlier_ratio, "-", "loop ICP overlap: min inliers / points");
-  b.Bind("loop_kernel", c.loop_kernel, {"none", "huber", "cauchy", "dcs"}, "robust kernel on loop edges");
-  b.Bind("loop_kernel_scale", c.loop_kernel_scale, "-", "Huber/Cauchy scale (whitened) or DCS Phi");
+  b.Bind("loop_kernel", c.loop_kernel, RobustKernelNames(), "robust kernel on loop edges");
+  b.Bind("loop_kernel_scale", c.loop_kernel_scale, "-", "Huber/Cauchy scale (whitened) or DCS Phi", Above(0));
   b.Bind("loop_accept_weight", c.loop_accept_weight, "-", "loop edges weighted below this count as rejected");
   b.Bind("solve_max_iterations", c.solve_max_iterations, "-", "Ceres iterations per solve");
   b.Bind("source_voxel_m", c.source_voxel_m, "m", "subsample scans (0 = off)");
@@ -47,20 +60,10 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
 }
 
 IcpPoseSlam::IcpPoseSlam(const IcpPoseSlamConfig& config)
-    : config_(config),
-      icp_(ResolveIcpConfig(config.icp, config.icp_choices, "icp-poseslam")),
-      loop_icp_(ResolveIcpConfig(config.loop_icp, config.loop_icp_choices, "icp-poseslam")) {
-  const auto positive = [](double v, const char* name) {
-    if (!(v > 0)) throw InputError(std::string("--set algo.icp-poseslam.") + name, 0, "must be > 0", "give a positive value");
-  };
-  positive(config.keyframe_distance_m, "keyframe_distance_m");
-  positive(config.keyframe_angle_deg, "keyframe_angle_deg");
-  positive(config.info_cap_sigma_xy_m, "info_cap_sigma_xy_m");
-  positive(config.info_cap_sigma_theta_deg, "info_cap_sigma_theta_deg");
-  positive(config.fixed_sigma_xy_m, "fixed_sigma_xy_m");
-  positive(config.fixed_sigma_theta_deg, "fixed_sigma_theta_deg");
-  positive(config.loop_kernel_scale, "loop_kernel_scale");
-  solve_options_.loop_kernel = ParseKernel(config.loop_kernel);
+    : config_(config), icp_(config.icp), loop_icp_(config.loop_icp) {
+  local_map_icp_ = icp_;
+  local_map_icp_.correspondence = IcpCorrespondence::kKdTree;
+  solve_options_.loop_kernel = config.loop_kernel;
   solve_options_.kernel_scale = config.loop_kernel_scale;
   solve_options_.max_iterations = config.solve_max_iterations;
 }
@@ -82,6 +85,9 @@ void IcpPoseSlam::Start(const StreamHeader& header) {
   loop_record_of_edge_.clear();
   records_.clear();
   proposed_ = 0;
+  loop_targets_.clear();
+  keyframes_since_solve_ = 0;
+  pending_closures_ = false;
   gate_ = AdaptiveThreshold{};
   gate_.config.initial_gate_m = icp_.max_correspondence_m;
   if (header.sensors.lidar) gate_.config.max_range_m = header.sensors.lidar->range_max_m;
@@ -111,7 +117,7 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
     AddKeyframe(scan, std::move(points), nullptr);
     return;
   }
-  IcpConfig icp = icp_;
+  IcpConfig icp = config_.local_map_keyframes > 0 ? local_map_icp_ : icp_;
   if (config_.adaptive_gate) icp.max_correspondence_m = CorrespondenceGate(gate_);
   const SE2 guess = T_kf_robot_;
   const IcpResult r = RegisterIcp(points.points, keyframe_target_, guess, icp);
@@ -148,7 +154,7 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
       e.information = (odometry_cov_ + Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix()).inverse();
       estimate_.diagnostics["odometry_edges"].emplace_back(scan.t_s, 1.0);
     } else {
-      e.information = config_.edge_information == "fixed"
+      e.information = config_.edge_information == EdgeInformationSource::kFixed
                           ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
                           : IcpEdgeInformation(*edge_icp, odometry_cov_, Caps());
     }
@@ -156,12 +162,23 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
     loop_record_of_edge_.push_back(-1);
   }
   graph_.poses.push_back(pose);
-  IcpTargetConfig tc;
-  tc.build_kd_tree = icp_.correspondence == IcpCorrespondence::kKdTree;
-  keyframe_target_ = MakeScanTarget(points, scan, tc);
+  if (config_.local_map_keyframes > 0) {
+    std::vector<Eigen::Vector2d> local = points.points;
+    for (int i = std::max(0, k - config_.local_map_keyframes); i < k; ++i) {
+      const SE2 T_k_i = Between(pose, graph_.poses[static_cast<size_t>(i)]);
+      for (const auto& p : keyframes_[static_cast<size_t>(i)].points.points) local.push_back(T_k_i * p);
+    }
+    std::vector<Eigen::Vector2d> thinned;
+    for (int i : VoxelSubsample(local, config_.local_map_voxel_m)) thinned.push_back(local[static_cast<size_t>(i)]);
+    keyframe_target_ = MakeCloudTarget(std::move(thinned));
+  } else {
+    IcpTargetConfig tc;
+    tc.build_kd_tree = icp_.correspondence == IcpCorrespondence::kKdTree;
+    keyframe_target_ = MakeScanTarget(points, scan, tc);
+  }
   LaserScanEvent geometry = scan;
   geometry.ranges_m.assign(scan.ranges_m.size(), 0.0);  // only the beam layout is kept
-  keyframes_.push_back({scan.t_s, std::move(points), std::move(geometry), path_m_, std::nullopt});
+  keyframes_.push_back({scan.t_s, std::move(points), std::move(geometry), path_m_});
   T_kf_robot_ = T_kf_last_scan_ = SE2();
   odometry_cov_.setZero();
   relative_cov_.setZero();
@@ -169,35 +186,92 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
   if (k > 0) CloseLoops(scan.t_s);
 }
 
+const IcpPoseSlam::LoopTarget& IcpPoseSlam::LoopTargetFor(int keyframe) {
+  for (const LoopTarget& t : loop_targets_)
+    if (t.keyframe == keyframe) return t;
+  constexpr size_t kCached = 8;
+  if (loop_targets_.size() >= kCached) loop_targets_.erase(loop_targets_.begin());
+  const int n = static_cast<int>(keyframes_.size());
+  const int lo = std::max(0, keyframe - config_.loop_submap_keyframes);
+  const int hi = std::min(n - 1, keyframe + config_.loop_submap_keyframes);
+  const SE2& T_w_j = graph_.poses[static_cast<size_t>(keyframe)];
+  std::vector<Eigen::Vector2d> points;
+  for (int i = lo; i <= hi; ++i) {
+    const SE2 T_j_i = Between(T_w_j, graph_.poses[static_cast<size_t>(i)]);
+    for (const auto& p : keyframes_[static_cast<size_t>(i)].points.points) points.push_back(T_j_i * p);
+  }
+  std::vector<Eigen::Vector2d> thinned;
+  for (int i : VoxelSubsample(points, 0.5 * config_.loop_table.resolution_m)) thinned.push_back(points[static_cast<size_t>(i)]);
+  LoopTarget t;
+  t.keyframe = keyframe;
+  t.table = MakeScoreTable(thinned, config_.loop_table);
+  t.cloud = MakeCloudTarget(std::move(thinned));
+  loop_targets_.push_back(std::move(t));
+  return loop_targets_.back();
+}
+
 void IcpPoseSlam::CloseLoops(double t_s) {
   const int k = static_cast<int>(keyframes_.size()) - 1;
   std::vector<double> path;
   for (const auto& kf : keyframes_) path.push_back(kf.path_m);
+  // The window comes from the relative pose's uncertainty along the most certain path
+  // through the graph (accepted closures included); beyond the caps it is the cap.
+  std::vector<bool> use_edge(graph_.edges.size(), true);
+  for (size_t i = 0; i < graph_.edges.size(); ++i) {
+    const int rec = loop_record_of_edge_[i];
+    if (rec >= 0) use_edge[i] = estimate_.loop_closures[static_cast<size_t>(rec)].accepted;
+  }
+  const double cap_sigma = config_.loop.max_search_radius_m / std::max(config_.loop.window_sigmas, 1e-9);
+  const std::vector<Eigen::Matrix3d> rel = RelativeCovariances(graph_, k, use_edge, 2.0 * cap_sigma * cap_sigma);
   bool added = false;
-  for (const LoopCandidate& c : FindLoopCandidates(graph_.poses, path, k, config_.loop)) {
-    Keyframe& old = keyframes_[static_cast<size_t>(c.keyframe)];
-    if (!old.loop_target) old.loop_target = MakeScanTarget(old.points, old.geometry);
+  double innovation_m = 0.0;
+  const std::vector<Eigen::Vector2d>& source = keyframes_.back().points.points;
+  for (const LoopCandidate& c : FindLoopCandidates(graph_.poses, path, k, config_.loop, rel)) {
+    const LoopTarget& target = LoopTargetFor(c.keyframe);
     const SE2 guess = Between(graph_.poses[static_cast<size_t>(c.keyframe)], graph_.poses.back());
-    const IcpResult r = RegisterIcp(keyframes_.back().points.points, *old.loop_target, guess, loop_icp_);
-    const LoopVerification v = VerifyLoopClosure(r, guess, c.radius_m, config_.loop);
+    CorrelativeSearchConfig search;
+    search.linear_window_m = c.radius_m;
+    search.angular_window_deg = c.angle_rad / kDegToRad;
+    search.min_score = config_.loop_min_score;
+    search.runner_up_radius_m = config_.loop_runner_up_radius_m;
+    const CorrelativeMatch m = MatchCorrelative(target.table, source, guess, search);
     ++proposed_;
-    estimate_.loop_closures.push_back({old.t_s, keyframes_.back().t_s, r.T_target_source, v.accepted});
+    const double t_old = keyframes_[static_cast<size_t>(c.keyframe)].t_s;
+    if (!m.found || m.runner_up_score >= config_.loop_max_runner_up_ratio * m.score) {  // no match, or ambiguous
+      estimate_.loop_closures.push_back({t_old, keyframes_.back().t_s, guess, false});
+      continue;
+    }
+    const IcpResult r = RegisterIcp(source, target.cloud, m.T_map_source, loop_icp_);
+    LoopVerification v = VerifyLoopClosure(r, guess, c.radius_m + config_.loop_max_match_shift_m, config_.loop);
+    if (v.accepted && (r.T_target_source.translation() - m.T_map_source.translation()).norm() > config_.loop_max_match_shift_m)
+      v = {false, "icp left the correlative match"};
+    estimate_.loop_closures.push_back({t_old, keyframes_.back().t_s, r.T_target_source, v.accepted});
     if (!v.accepted) continue;
     PoseGraphEdge e;
     e.from = c.keyframe;
     e.to = k;
     e.T_from_to = r.T_target_source;
-    e.information = config_.edge_information == "fixed"
+    e.information = config_.edge_information == EdgeInformationSource::kFixed
                         ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
                         : IcpEdgeInformation(r, 1e6 * Eigen::Matrix3d::Identity(), Caps());
     e.loop_closure = true;
     graph_.edges.push_back(e);
     loop_record_of_edge_.push_back(static_cast<int>(estimate_.loop_closures.size()) - 1);
+    innovation_m = (r.T_target_source.translation() - guess.translation()).norm();
     added = true;
     break;  // one closure per keyframe; the solve below moves the rest
   }
   estimate_.diagnostics["loop_closures_proposed"].emplace_back(t_s, proposed_);
-  if (added) Solve();
+  pending_closures_ = pending_closures_ || added;
+  ++keyframes_since_solve_;
+  // Closures that agree with the estimate change little: they are solved in batches.
+  if ((added && innovation_m > config_.solve_innovation_m) ||
+      (pending_closures_ && keyframes_since_solve_ >= config_.solve_every_keyframes)) {
+    Solve();
+    pending_closures_ = false;
+    keyframes_since_solve_ = 0;
+    loop_targets_.clear();  // the submaps moved
+  }
 }
 
 PoseGraphSolveResult IcpPoseSlam::Solve(bool marginals) {

@@ -14,6 +14,7 @@
 
 #include "core/slam_module.hpp"
 #include "slam/adaptive_threshold.hpp"
+#include "slam/correlative_matcher.hpp"
 #include "slam/edge_information.hpp"
 #include "slam/icp_params.hpp"
 #include "slam/loop_closure.hpp"
@@ -23,22 +24,36 @@
 
 namespace slambox {
 
+/// Information of an ICP edge: the capped ICP Hessian, or fixed sigmas.
+enum class EdgeInformationSource { kHessian, kFixed };
+
 struct IcpPoseSlamConfig {
-  IcpConfig icp;                        ///< front end: scan to keyframe
-  IcpChoices icp_choices{.robust_kernel = "geman-mcclure"};  ///< redescending weights: movers do not drag ICP
+  /// Front end, scan to keyframe; redescending weights: movers do not drag ICP.
+  IcpConfig icp{.correspondence = IcpCorrespondence::kProjection, .robust_kernel = IcpRobustKernel::kGemanMcClure};
   IcpConfig loop_icp{.correspondence = IcpCorrespondence::kKdTree, .max_iterations = 50,
                      .max_correspondence_m = 0.5};
-  IcpChoices loop_icp_choices{.correspondence = "kdtree"};
   bool adaptive_gate = true;            ///< KISS-ICP adaptive gate for the front end
+  /// Front-end target: the latest keyframe and this many before it, merged in its frame
+  /// (scan-to-submap, kd-tree); 0 = the latest keyframe's scan alone (projection).
+  int local_map_keyframes = 3;
+  double local_map_voxel_m = 0.05;      ///< [m] voxel size of the merged local map
   double keyframe_distance_m = 0.5;     ///< [m] new keyframe after this much translation
   double keyframe_angle_deg = 20.0;     ///< [deg] ... or this much rotation
-  std::string edge_information = "hessian";  ///< hessian (capped) | fixed
+  EdgeInformationSource edge_information = EdgeInformationSource::kHessian;
   double info_cap_sigma_xy_m = 0.005;    ///< [m] Hessian information cap, translation
   double info_cap_sigma_theta_deg = 0.1; ///< [deg] Hessian information cap, heading
   double fixed_sigma_xy_m = 0.02;        ///< [m] fixed information, translation
   double fixed_sigma_theta_deg = 0.5;    ///< [deg] fixed information, heading
   LoopClosureConfig loop;
-  std::string loop_kernel = "dcs";       ///< none | huber | cauchy | dcs, on loop edges only
+  int loop_submap_keyframes = 5;         ///< loop target: the candidate keyframe and this many on each side
+  ScoreTableConfig loop_table{.resolution_m = 0.05, .sigma_m = 0.05, .levels = 5};  ///< correlative search grid
+  double loop_min_score = 0.6;           ///< correlative score (mean of exp(-d^2/2 sigma^2)) a closure needs
+  double loop_runner_up_radius_m = 0.5;  ///< [m] ambiguity: best score farther than this from the match ...
+  double loop_max_runner_up_ratio = 0.95;  ///< ... must stay below this fraction of the match's score
+  double loop_max_match_shift_m = 0.1;   ///< [m] ICP may move the correlative match at most this far
+  int solve_every_keyframes = 20;        ///< re-solve pending small closures after this many keyframes
+  double solve_innovation_m = 0.05;      ///< [m] a closure this far off the estimate is solved at once
+  RobustKernel loop_kernel = RobustKernel::kDcs;  ///< on loop edges only
   double loop_kernel_scale = 100.0;        ///< Huber/Cauchy scale on the whitened residual; DCS Phi
   double loop_accept_weight = 0.5;       ///< a loop edge the back-end weights below this counts as rejected
   int solve_max_iterations = 50;
@@ -63,7 +78,11 @@ class IcpPoseSlam : public SlamModule {
     ScanPoints points;
     LaserScanEvent geometry;  ///< beam layout (for the loop-closure target)
     double path_m = 0.0;      ///< path length travelled up to this keyframe
-    std::optional<IcpTarget> loop_target;  ///< built on first use
+  };
+  struct LoopTarget {  ///< a submap around keyframe `keyframe`, in its frame
+    int keyframe = -1;
+    ScoreTable table;
+    IcpTarget cloud;
   };
   struct Record {  ///< a trajectory pose relative to a keyframe (-1: absolute, before the first)
     double t_s = 0.0;
@@ -75,11 +94,12 @@ class IcpPoseSlam : public SlamModule {
   /// edge_icp: the ICP result joining it to the previous keyframe, or null (odometry edge).
   void AddKeyframe(const LaserScanEvent& scan, ScanPoints points, const IcpResult* edge_icp);
   void CloseLoops(double t_s);
+  const LoopTarget& LoopTargetFor(int keyframe);
   PoseGraphSolveResult Solve(bool marginals = false);
   InformationCaps Caps() const;
 
   IcpPoseSlamConfig config_;
-  IcpConfig icp_, loop_icp_;
+  IcpConfig icp_, loop_icp_, local_map_icp_;
   PoseGraphSolveOptions solve_options_;
   AdaptiveThreshold gate_;
   std::array<double, 4> alpha_{};
@@ -96,6 +116,9 @@ class IcpPoseSlam : public SlamModule {
   std::vector<Record> records_;
   Estimate estimate_;
   int proposed_ = 0;
+  std::vector<LoopTarget> loop_targets_;  ///< recently used submaps (a few; oldest replaced)
+  int keyframes_since_solve_ = 0;
+  bool pending_closures_ = false;
 };
 
 ModuleInfo IcpPoseSlamModule();

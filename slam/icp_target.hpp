@@ -121,10 +121,4 @@ inline bool NearestOnBeams(const IcpTarget& target, const Eigen::Vector2d& q, do
 void NearestOnBeamsBatch(const IcpTarget& target, const Eigen::Vector2d* q, const double* bearing_rad, size_t n,
                          int window_beams, int* nearest, double* dist2_m2);
 
-/// NearestOnBeams at q's own bearing.
-inline bool NearestByProjection(const IcpTarget& target, const Eigen::Vector2d& q, int window_beams, int* index,
-                                double* dist2_m2) {
-  return NearestOnBeams(target, q, FastAtan2(q.y(), q.x()), window_beams, index, dist2_m2);
-}
-
 }  // namespace slambox

@@ -3,8 +3,10 @@
 // nonlinear least squares with Ceres: keyframe poses and landmark positions are
 // parameter blocks; odometry between-factors link consecutive keyframes, range-bearing
 // factors link a keyframe to a landmark; keyframe 0 is held constant (gauge).
-//   odometry:      e = [R_i^T (t_j - t_i) - t_ij ; wrap(theta_j - theta_i - theta_ij)], info Sigma_ij^-1
+//   odometry:      the pose graph's between-poses factor (slam/pose_graph_cost.hpp),
+//                  e = [R_i^T (t_j - t_i) - t_ij ; wrap(theta_j - theta_i - theta_ij)], info Sigma_ij^-1
 //   range-bearing: e = [r - |m - t_i| ; wrap(b - atan2(m - t_i) + theta_i)], info R^-1
+// Poses are SE2, solved on the pose manifold of slam/angle_manifold.hpp (as the pose graph).
 // Marginal covariances of every pose and landmark come from ceres::Covariance.
 #include <Eigen/Core>
 #include <map>
@@ -28,7 +30,7 @@ struct RangeBearingConstraint {
 };
 
 struct LandmarkGraph {
-  std::vector<Eigen::Vector3d> poses;        ///< (x, y, theta) of each keyframe: guess in, solution out
+  std::vector<SE2> poses;                    ///< each keyframe's pose: guess in, solution out
   std::map<int, Eigen::Vector2d> landmarks;  ///< key -> position [m]: guess in, solution out
   std::vector<OdometryConstraint> odometry;
   std::vector<RangeBearingConstraint> observations;  ///< naming a missing landmark: skipped

@@ -37,6 +37,14 @@ double Chi2(const PoseGraph& graph) {
   return chi2;
 }
 
+const EnumNames<RobustKernel>& RobustKernelNames() {
+  static const EnumNames<RobustKernel> names = {{RobustKernel::kNone, "none"},
+                                                {RobustKernel::kHuber, "huber"},
+                                                {RobustKernel::kCauchy, "cauchy"},
+                                                {RobustKernel::kDcs, "dcs"}};
+  return names;
+}
+
 namespace {
 
 std::unique_ptr<ceres::LossFunction> MakeLoopLoss(RobustKernel kernel, double scale) {

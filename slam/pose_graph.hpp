@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/params.hpp"
 #include "core/se2.hpp"
 
 namespace slambox {
@@ -25,6 +26,8 @@ struct PoseGraph {
 };
 
 enum class RobustKernel { kNone, kHuber, kCauchy, kDcs };
+/// none, huber, cauchy, dcs (for `--set` and file options).
+const EnumNames<RobustKernel>& RobustKernelNames();
 
 struct PoseGraphSolveOptions {
   RobustKernel loop_kernel = RobustKernel::kNone;

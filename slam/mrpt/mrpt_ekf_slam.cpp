@@ -12,7 +12,9 @@ namespace slambox {
 namespace mb = mrpt_bridge;
 
 void BindParams(MrptEkfSlamConfig& c, ParamBinder& b) {
-  b.Bind("data_association", c.data_association, {"nn", "jcbb"}, "MRPT data association for landmarks without ids");
+  static const EnumNames<MrptDataAssociation> kNames = {{MrptDataAssociation::kNearestNeighbour, "nn"},
+                                                       {MrptDataAssociation::kJcbb, "jcbb"}};
+  b.Bind("data_association", c.data_association, kNames, "MRPT data association for landmarks without ids");
   b.Bind("association_chi2_quantile", c.association_chi2_quantile, "-", "chi-square quantile of the association gate");
   b.Bind("noise_scale", c.noise_scale, "-", "factor on the stream's sensor and odometry variances (1 = as configured)");
   b.Bind("min_sigma_xy_m", c.min_sigma_xy_m, "m", "floor on the odometry action's position std");
@@ -48,7 +50,7 @@ void MrptEkfSlam::Start(const StreamHeader& header) {
   const double k = std::sqrt(config_.noise_scale);
   f.options.std_sensor_range = static_cast<float>(k * s.sensor.sigma_range_m);
   f.options.std_sensor_yaw = static_cast<float>(k * s.sensor.sigma_bearing_deg * M_PI / 180.0);
-  f.options.data_assoc_method = config_.data_association == "jcbb" ? mrpt::slam::assocJCBB : mrpt::slam::assocNN;
+  f.options.data_assoc_method = config_.data_association == MrptDataAssociation::kJcbb ? mrpt::slam::assocJCBB : mrpt::slam::assocNN;
   f.options.data_assoc_IC_chi2_thres = config_.association_chi2_quantile;
   f.options.create_simplemap = false;
   s.current = PoseEstimate{0.0, header.start_pose, Eigen::Matrix3d::Zero(), true};

@@ -16,8 +16,11 @@
 
 namespace slambox {
 
+/// Unknown ids: MRPT's assocNN or assocJCBB.
+enum class MrptDataAssociation { kNearestNeighbour, kJcbb };
+
 struct MrptEkfSlamConfig {
-  std::string data_association = "nn";  ///< unknown ids: "nn" (assocNN) or "jcbb" (assocJCBB)
+  MrptDataAssociation data_association = MrptDataAssociation::kNearestNeighbour;  ///< nn | jcbb
   double association_chi2_quantile = 0.99;  ///< individual-compatibility gate (chi² quantile)
   double noise_scale = 1.0;       ///< factor on the stream's sensor and odometry variances
   double min_sigma_xy_m = 1e-4;   ///< floor on the action's position std (zero motion)

@@ -11,7 +11,9 @@ namespace slambox {
 namespace mb = mrpt_bridge;
 
 void BindParams(MrptIcpSlamConfig& c, ParamBinder& b) {
-  b.Bind("icp_algorithm", c.icp_algorithm, {"classic", "lm"}, "CICP variant: icpClassic or icpLevenbergMarquardt");
+  static const EnumNames<MrptIcpAlgorithm> kNames = {{MrptIcpAlgorithm::kClassic, "classic"},
+                                                    {MrptIcpAlgorithm::kLevenbergMarquardt, "lm"}};
+  b.Bind("icp_algorithm", c.icp_algorithm, kNames, "CICP variant: icpClassic or icpLevenbergMarquardt");
   b.Bind("icp_max_iterations", c.icp_max_iterations, "-", "CICP maxIterations");
   b.Bind("icp_threshold_dist_m", c.icp_threshold_dist_m, "m", "CICP thresholdDist: initial pairing distance");
   b.Bind("icp_threshold_ang_deg", c.icp_threshold_ang_deg, "deg", "CICP thresholdAng: pairing distance per metre of range");
@@ -57,7 +59,7 @@ void MrptIcpSlam::Start(const StreamHeader& header) {
   points.insertionOpts.isPlanarMap = true;
   b.ICP_options.mapInitializers.push_back(points);
   auto& p = b.ICP_params;
-  p.ICP_algorithm = config_.icp_algorithm == "lm" ? mrpt::slam::icpLevenbergMarquardt : mrpt::slam::icpClassic;
+  p.ICP_algorithm = config_.icp_algorithm == MrptIcpAlgorithm::kLevenbergMarquardt ? mrpt::slam::icpLevenbergMarquardt : mrpt::slam::icpClassic;
   p.maxIterations = static_cast<unsigned>(config_.icp_max_iterations);
   p.thresholdDist = config_.icp_threshold_dist_m;
   p.thresholdAng = config_.icp_threshold_ang_deg * M_PI / 180.0;

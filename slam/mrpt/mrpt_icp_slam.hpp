@@ -12,8 +12,11 @@
 
 namespace slambox {
 
+/// MRPT's icpClassic or icpLevenbergMarquardt.
+enum class MrptIcpAlgorithm { kClassic, kLevenbergMarquardt };
+
 struct MrptIcpSlamConfig {
-  std::string icp_algorithm = "classic";  ///< "classic" (icpClassic) or "lm" (icpLevenbergMarquardt)
+  MrptIcpAlgorithm icp_algorithm = MrptIcpAlgorithm::kClassic;  ///< classic | lm
   int icp_max_iterations = 80;
   double icp_threshold_dist_m = 0.75;     ///< initial pairing distance
   double icp_threshold_ang_deg = 0.15;    ///< pairing distance grows by this angle times range

@@ -15,7 +15,9 @@ namespace slambox {
 namespace mb = mrpt_bridge;
 
 void BindParams(MrptRbpfSlamConfig& c, ParamBinder& b) {
-  b.Bind("proposal", c.proposal, {"optimal", "standard"}, "pfOptimalProposal (scan matching) or pfStandardProposal");
+  static const EnumNames<MrptProposal> kNames = {{MrptProposal::kOptimal, "optimal"},
+                                                {MrptProposal::kStandard, "standard"}};
+  b.Bind("proposal", c.proposal, kNames, "pfOptimalProposal (scan matching) or pfStandardProposal");
   b.Bind("particles", c.particles, "-", "number of particles (one grid map each)");
   b.Bind("resample_ess_ratio", c.resample_ess_ratio, "-", "resample when ESS/N is below this (MRPT BETA)");
   b.Bind("grid_resolution_m", c.grid_resolution_m, "m", "occupancy grid cell size");
@@ -69,7 +71,7 @@ void MrptRbpfSlam::Start(const StreamHeader& header) {
   o.localizeLinDistance = static_cast<float>(config_.localize_lin_distance_m);
   o.localizeAngDistance = static_cast<float>(config_.localize_ang_distance_deg * M_PI / 180.0);
   o.PF_options.PF_algorithm =
-      config_.proposal == "optimal" ? mrpt::bayes::CParticleFilter::pfOptimalProposal
+      config_.proposal == MrptProposal::kOptimal ? mrpt::bayes::CParticleFilter::pfOptimalProposal
                                     : mrpt::bayes::CParticleFilter::pfStandardProposal;
   o.PF_options.resamplingMethod = mrpt::bayes::CParticleFilter::prSystematic;
   o.PF_options.sampleSize = static_cast<unsigned>(config_.particles);

@@ -20,8 +20,11 @@
 
 namespace slambox {
 
+/// MRPT's pfStandardProposal or pfOptimalProposal (scan matching).
+enum class MrptProposal { kStandard, kOptimal };
+
 struct MrptRbpfSlamConfig {
-  std::string proposal = "standard";  ///< "standard" (pfStandardProposal) or "optimal" (pfOptimalProposal)
+  MrptProposal proposal = MrptProposal::kStandard;  ///< standard | optimal
   int particles = 10;
   double resample_ess_ratio = 0.5;       ///< resample when ESS / N drops below this (MRPT BETA)
   double grid_resolution_m = 0.05;

@@ -94,6 +94,18 @@ TEST(CmdScenario, AlgorithmsListsModulesAndParams) {
   EXPECT_THROW(RunCommand({"algorithms", "--params", "no-such-module"}), InputError);
 }
 
+TEST(Registry, EveryModuleBuildsWithItsDefaultsAndRejectsAnOutOfRangeValue) {
+  for (const auto& m : AllModules()) EXPECT_NO_THROW(m.create({})) << m.name << ": a default is outside its range";
+  try {
+    FindModule("icp-odometry").create({{"trim_fraction", "1"}});
+    FAIL() << "trim_fraction = 1 accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("--set algo.icp-odometry.trim_fraction"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(">= 0 and < 1"), std::string::npos) << msg;
+  }
+}
+
 TEST(CmdScenario, EveryCommandHasHelp) {
   for (const auto& args : std::vector<std::vector<std::string>>{
            {"scenarios", "--help"}, {"scenario", "--help"}, {"scenario", "show", "--help"}, {"algorithms", "--help"}})

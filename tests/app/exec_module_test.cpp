@@ -98,7 +98,7 @@ TEST(ExecModule, EveryParameterTypeReachesTheChildTyped) {
   EXPECT_EQ(ReadJson(dir / "metrics.json")["algorithms"]["exec:params"]["status"], "failed") << defaults.output;
   const auto listing = Slambox("algorithms --params exec:params");
   for (const char* row : {"algo.exec:params.gain  double  1", "algo.exec:params.n     int     3",
-                          "algo.exec:params.on    bool    false", "algo.exec:params.mode  string  fast"})
+                          "algo.exec:params.on    bool    false", "algo.exec:params.mode  enum    fast"})
     EXPECT_NE(listing.output.find(row), std::string::npos) << row << "\n" << listing.output;
   const auto bad = Slambox("run loop --set duration_s=3 --algo exec:params --set algo.exec:params.mode=slow -o " +
                            dir.string());

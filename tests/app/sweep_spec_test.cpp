@@ -6,7 +6,7 @@
 #include <fstream>
 #include <set>
 
-#include "app/csv.hpp"
+#include "core/csv.hpp"
 #include "app/sweep_spec.hpp"
 #include "app/sweep_summary.hpp"
 #include "core/error.hpp"
@@ -106,19 +106,6 @@ TEST(Csv, QuotesRoundTrip) {
   EXPECT_THROW(ParseCsv("a,b\n\"1,2\n", "x.csv"), InputError);
 }
 
-TEST(Summary, StatisticsMatchHandComputedValues) {
-  const CellStats s = Summarize({2.0, 4.0, 4.0, 5.0});
-  EXPECT_EQ(s.n, 4);
-  EXPECT_DOUBLE_EQ(s.mean, 3.75);
-  EXPECT_NEAR(s.std, std::sqrt(4.75 / 3.0), 1e-12);  // squares 3.0625+0.0625+0.0625+1.5625, n-1 = 3
-  EXPECT_DOUBLE_EQ(s.median, 4.0);
-  const double half = 3.182 * s.std / 2.0;  // t(0.975, 3) = 3.182
-  EXPECT_NEAR(s.ci95_low, 3.75 - half, 1e-12);
-  EXPECT_NEAR(s.ci95_high, 3.75 + half, 1e-12);
-  EXPECT_EQ(Summarize({}).n, 0);
-  EXPECT_DOUBLE_EQ(Summarize({7.0}).ci95_high, 7.0);
-}
-
 TEST(Summary, CheckFlagsAPlantedRegressionOnly) {
   const std::string header = "run_id,scenario,seed,algorithm,status,robot.laps,ate_rmse_m,anees\n";
   const auto base = WriteTemp("base.csv", header +
@@ -143,15 +130,6 @@ TEST(Summary, CheckFlagsAPlantedRegressionOnly) {
   const auto missing = CheckBaseline(lost, base, 0.1, 0.0);
   ASSERT_EQ(missing.size(), 1u);
   EXPECT_TRUE(std::isnan(missing[0].current_mean));
-}
-
-TEST(Summary, TimingKeysStayOutOfResults) {
-  EXPECT_TRUE(IsTimingKey("runtime_s"));
-  EXPECT_TRUE(IsTimingKey("realtime_factor"));
-  EXPECT_TRUE(IsTimingKey("step_time_p95_s"));
-  EXPECT_TRUE(IsTimingKey("peak_memory_mb"));
-  EXPECT_FALSE(IsTimingKey("ate_rmse_m"));
-  EXPECT_FALSE(IsTimingKey("anees"));
 }
 
 }  // namespace

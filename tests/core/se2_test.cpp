@@ -17,6 +17,23 @@ SE2 Perturb(const SE2& T, int k, double h) {
   return SE2::FromVector(v);
 }
 
+TEST(Se2, ExpLogAndAdjointAreExactInverses) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-3.0, 3.0), angle(-M_PI + 1e-6, M_PI - 1e-6);
+  for (int k = 0; k < 200; ++k) {
+    const SE2 T(u(rng), u(rng), k == 0 ? 0.0 : k == 1 ? 1e-12 : angle(rng));  // small-angle branch too
+    EXPECT_LT(Diff(Exp(Log(T)), T).norm(), 1e-12) << k;
+    const Eigen::Vector3d xi(u(rng), u(rng), angle(rng));
+    EXPECT_LT((Log(Exp(xi)) - xi).norm(), 1e-12) << k;
+    // SE(2)'s adjoint is exact: T Exp(xi) T^-1 = Exp(Ad(T) xi).
+    EXPECT_LT(Diff(T * Exp(xi) * T.inverse(), Exp(Adjoint(T) * xi)).norm(), 1e-12) << k;
+  }
+  // Closed form: a quarter turn along a unit arc ends at (sin w / w, (1 - cos w) / w) * |v|.
+  const SE2 arc = Exp(Eigen::Vector3d(1.0, 0.0, M_PI / 2));
+  EXPECT_NEAR(arc.x, 2.0 / M_PI, 1e-15);
+  EXPECT_NEAR(arc.y, 2.0 / M_PI, 1e-15);
+}
+
 TEST(Se2, ComposeJacobiansMatchFiniteDifferences) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-4.0, 4.0);

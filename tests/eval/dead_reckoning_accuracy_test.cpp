@@ -56,12 +56,12 @@ TEST(DeadReckoningAccuracy, ConsistentCovarianceStaysInTheAneesBand) {
     const GroundTruth gt{s.groundtruth, World{}};
     const Evaluation ok = EvaluateEstimate(gt, DeadReckon(s, 1.0));
     const Evaluation over = EvaluateEstimate(gt, DeadReckon(s, 0.01));
-    ASSERT_EQ(ok.metrics["status"], "ok");
-    ate_sum += ok.metrics["ate_rmse_m"].get<double>();
+    ASSERT_EQ(ok.metrics.status, RunStatus::kOk);
+    ate_sum += ok.metrics.ate.rmse;
     std::vector<double> a, b;
-    for (size_t k = 1; k < ok.series["nees"].size(); k += 10) {  // skip the prior-only first step
-      a.push_back(ok.series["nees"][k].get<double>());
-      b.push_back(over.series["nees"][k].get<double>());
+    for (size_t k = 1; k < ok.series.nees.size(); k += 10) {  // skip the prior-only first step
+      a.push_back(ok.series.nees[k]);
+      b.push_back(over.series.nees[k]);
     }
     nees.push_back(a);
     nees_over.push_back(b);
@@ -81,8 +81,8 @@ TEST(DeadReckoningAccuracy, ConsistentCovarianceStaysInTheAneesBand) {
 TEST(DeadReckoningAccuracy, SameSeedGivesBitIdenticalMetrics) {
   const Stream s = MakeStream(5);
   const GroundTruth gt{s.groundtruth, World{}};
-  const std::string a = EvaluateEstimate(gt, DeadReckon(s, 1.0)).metrics.dump();
-  const std::string b = EvaluateEstimate(gt, DeadReckon(MakeStream(5), 1.0)).metrics.dump();
+  const std::string a = ToJson(EvaluateEstimate(gt, DeadReckon(s, 1.0)).metrics).dump();
+  const std::string b = ToJson(EvaluateEstimate(gt, DeadReckon(MakeStream(5), 1.0)).metrics).dump();
   EXPECT_EQ(a, b);
 }
 

@@ -115,7 +115,7 @@ TEST(Relations, EvaluateWritesRelationKeysWithoutGroundTruth) {
   o.relations = {{1001.0, 1002.0, SE2(0.9, 0.1, 80 * kDeg)}, {1000.0, 1001.0, SE2(1.0, 0.0, 90 * kDeg)},
                  {1000.0, 1010.0, SE2()}};
   o.relation_matching.time_origin_s = 1000.0;
-  const auto m = EvaluateEstimate(none, est, o).metrics;
+  const auto m = ToJson(EvaluateEstimate(none, est, o).metrics);
   EXPECT_EQ(m["relation_count"], 2);
   EXPECT_EQ(m["relation_unmatched"], 1);
   EXPECT_NEAR(m["relation_trans_mean_m"].get<double>(), std::sqrt(0.02) / 2, 1e-12);
@@ -124,7 +124,7 @@ TEST(Relations, EvaluateWritesRelationKeysWithoutGroundTruth) {
   EXPECT_NEAR(m["relation_rot_sq_mean_deg2"].get<double>(), 40.5, 1e-7);
   EXPECT_TRUE(m["ate_rmse_m"].is_null());
   // Without a relations file the RPE pairs are the relations and nothing is "unmatched".
-  const auto rpe = EvaluateEstimate(none, est).metrics;
+  const auto rpe = ToJson(EvaluateEstimate(none, est).metrics);
   EXPECT_EQ(rpe["relation_count"], 0);
   EXPECT_TRUE(rpe["relation_unmatched"].is_null());
   EXPECT_TRUE(rpe["relation_trans_mean_m"].is_null());

@@ -41,11 +41,36 @@ TEST(Statistics, EmptyIsNullInJson) {
   const ErrorStatistics s = ComputeStatistics({});
   EXPECT_EQ(s.count, 0);
   EXPECT_TRUE(std::isnan(s.rmse));
-  nlohmann::json j;
-  AddStatistics(j, "ate", "_m", "_m2", s);
-  EXPECT_TRUE(j["ate_rmse_m"].is_null());
-  EXPECT_TRUE(j["ate_sse_m2"].is_null());
-  EXPECT_EQ(j.size(), 7u);
+  EXPECT_TRUE(NumberOrNull(s.rmse).is_null());
+  EXPECT_TRUE(NumberOrNull(INFINITY).is_null());
+  EXPECT_EQ(NumberOrNull(0.5), nlohmann::json(0.5));
+}
+
+TEST(SampleSummary, SweepCellStatisticsMatchHandComputedValues) {
+  const SampleSummary s = Summarize({2.0, 4.0, 4.0, 5.0, NAN});
+  EXPECT_EQ(s.n, 4);
+  EXPECT_DOUBLE_EQ(s.mean, 3.75);
+  EXPECT_NEAR(s.std, std::sqrt(4.75 / 3.0), 1e-12);  // squares 3.0625+0.0625+0.0625+1.5625, n-1 = 3
+  EXPECT_DOUBLE_EQ(s.median, 4.0);
+  EXPECT_NEAR(s.ci95_half, 3.182 * s.std / 2.0, 1e-12);  // t(0.975, 3) = 3.182
+  EXPECT_EQ(Summarize({}).n, 0);
+  EXPECT_EQ(Summarize({7.0}).std, 0.0);
+  EXPECT_EQ(Summarize({7.0}).ci95_half, 0.0);
+}
+
+TEST(SampleSummary, QuartilesWhiskersAndInterval) {
+  // 1..9 and an outlier 100: type-7 quartiles of 10 values.
+  const SampleSummary s = Summarize({5, 1, 9, 2, 8, 3, 7, 4, 6, 100, NAN});
+  EXPECT_EQ(s.n, 10);
+  EXPECT_DOUBLE_EQ(s.median, 5.5);
+  EXPECT_DOUBLE_EQ(s.q1, 3.25);
+  EXPECT_DOUBLE_EQ(s.q3, 7.75);
+  EXPECT_DOUBLE_EQ(s.whisker_lo, 1.0);
+  EXPECT_DOUBLE_EQ(s.whisker_hi, 9.0);
+  ASSERT_EQ(s.outliers, std::vector<double>{100.0});
+  // Mean 14.5, sample sd 30.15239 (by hand: sqrt(8182.5 / 9)), t_{0.975,9} = 2.262.
+  EXPECT_DOUBLE_EQ(s.mean, 14.5);
+  EXPECT_NEAR(s.ci95_half, 2.262 * 30.15239 / std::sqrt(10.0), 1e-3);
 }
 
 TEST(Statistics, PercentileMatchesNumpyLinear) {

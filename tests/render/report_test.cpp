@@ -34,29 +34,13 @@ std::string Slurp(const std::string& path) {
   return s.str();
 }
 
-TEST(SweepStats, QuartilesWhiskersAndInterval) {
-  // 1..9 and an outlier 100: type-7 quartiles of 10 values.
-  const GroupStats s = Describe({5, 1, 9, 2, 8, 3, 7, 4, 6, 100, NAN});
-  EXPECT_EQ(s.n, 10);
-  EXPECT_DOUBLE_EQ(s.median, 5.5);
-  EXPECT_DOUBLE_EQ(s.q1, 3.25);
-  EXPECT_DOUBLE_EQ(s.q3, 7.75);
-  EXPECT_DOUBLE_EQ(s.whisker_lo, 1.0);
-  EXPECT_DOUBLE_EQ(s.whisker_hi, 9.0);
-  ASSERT_EQ(s.outliers, std::vector<double>{100.0});
-  // Mean 14.5, sample sd 30.15239 (by hand: sqrt(8182.5 / 9)), t_{0.975,9} = 2.262.
-  EXPECT_DOUBLE_EQ(s.mean, 14.5);
-  EXPECT_NEAR(s.ci95_half, 2.262 * 30.15239 / std::sqrt(10.0), 1e-3);
-  EXPECT_EQ(Describe({2.0}).ci95_half, 0.0);
-}
-
 TEST(SweepFigures, SyntheticSweepRendersEveryFigure) {
   const std::string dir = TempDir("sweep");
   testing::WriteSyntheticSweep(dir);
   const SweepFolder sw = ReadSweepFolder(dir);
-  EXPECT_EQ(sw.rows.size(), 2u * 3 * 2 * 6 * 2);
-  EXPECT_EQ(sw.metric_keys, (std::vector<std::string>{"ate_rmse_m", "rpe_trans_rmse_m", "anees"}));
-  EXPECT_TRUE(std::isnan(sw.rows[1].metrics.at("anees")));  // empty cell = null
+  EXPECT_EQ(sw.results.rows.size(), 2u * 3 * 2 * 6 * 2);
+  EXPECT_EQ(sw.results.metric_keys, (std::vector<std::string>{"ate_rmse_m", "rpe_trans_rmse_m", "anees"}));
+  EXPECT_TRUE(std::isnan(sw.results.rows[1].metrics.at("anees")));  // empty cell = null
   const auto written = RenderSweepFiguresListed(dir);
   EXPECT_EQ(written, (std::vector<std::string>{"figures/box_ate_rmse_m", "figures/box_rpe_trans_rmse_m",
                                                "figures/vs_sensors.lidar.sigma_range_m",

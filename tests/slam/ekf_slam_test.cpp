@@ -55,9 +55,10 @@ TEST(EkfSlam, KnownIdsBeatOdometryAndRecoverTheMap) {
 
 TEST(EkfSlam, UnknownIdsNoDuplicatesNoSpurious) {
   const World world = LandmarkWorld();
-  for (const std::string assoc : {"nn", "jcbb"}) {
+  for (const EkfAssociation association : {EkfAssociation::kNearestNeighbour, EkfAssociation::kJcbb}) {
+    const std::string assoc = NameOf(EkfAssociationNames(), association);
     const Stream stream = MakeSyntheticStream(LandmarkOptions(4, 2, false), world);
-    const Estimate e = RunEkf(stream, {.association = assoc});
+    const Estimate e = RunEkf(stream, {.association = association});
     const double ate = AteRmse(stream, e);
     EXPECT_EQ(e.landmarks.size(), world.landmarks.size()) << assoc;
     for (double d : testing::NearestTrueDistance(world, e)) EXPECT_LT(d, 0.3) << assoc;

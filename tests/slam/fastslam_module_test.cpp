@@ -100,12 +100,17 @@ TEST(FastSlamModule, OutputsTrajectoryDiagnosticsAndSnapshots) {
   FastSlamConfig c;
   c.particles = 30;
   const Estimate e = RunModule<FastSlam1>(s, c);
-  // start pose plus one pose per odometry event, each with the cloud's covariance
+  // start pose plus one pose per odometry event; the cloud's covariance only after the
+  // time where all final particles' paths coalesce (before it the set holds one path)
   size_t odometry = 0, scans = 0;
   for (const auto& ev : s.events) odometry += std::holds_alternative<OdometryEvent>(ev), scans += std::holds_alternative<LandmarkEvent>(ev);
   ASSERT_EQ(e.trajectory.size(), odometry + 1);
   EXPECT_EQ(e.trajectory.front().pose.vector(), s.header.start_pose.vector());
-  for (const PoseEstimate& p : e.trajectory) EXPECT_TRUE(p.has_covariance);
+  ASSERT_EQ(e.diagnostics.at("coalesced_until_s").size(), 1u);
+  const double coalesced = e.diagnostics.at("coalesced_until_s").front().second;
+  EXPECT_GE(coalesced, 0.0);  // the start pose is shared by all
+  EXPECT_LT(coalesced, e.trajectory.back().t_s);
+  for (const PoseEstimate& p : e.trajectory) EXPECT_EQ(p.has_covariance, p.t_s > coalesced) << p.t_s;
   EXPECT_GT(e.trajectory.back().covariance(0, 0), 0.0);
   for (const char* name : {"neff", "distinct_ancestors", "resampled", "landmarks"})
     EXPECT_EQ(e.diagnostics.at(name).size(), scans) << name;
@@ -159,18 +164,20 @@ TEST(FastSlamModule, TrajectoryChoicesShareTimesAndCarryCovariances) {
   const Stream s = MakeStream(4, true, 1);
   FastSlamConfig c;
   c.particles = 20;
-  c.trajectory = "best";
+  c.trajectory = FastSlamTrajectory::kBest;
   const Estimate best = RunModule<FastSlam>(s, c, true);
-  c.trajectory = "mean";
+  c.trajectory = FastSlamTrajectory::kMean;
   const Estimate mean = RunModule<FastSlam>(s, c, true);
-  c.trajectory = "path_mean";
+  c.trajectory = FastSlamTrajectory::kPathMean;
   const Estimate path_mean = RunModule<FastSlam>(s, c, true);
   ASSERT_EQ(best.trajectory.size(), mean.trajectory.size());
   ASSERT_EQ(best.trajectory.size(), path_mean.trajectory.size());
   for (size_t i = 0; i < best.trajectory.size(); ++i) {
     EXPECT_EQ(best.trajectory[i].t_s, mean.trajectory[i].t_s);
     EXPECT_EQ(best.trajectory[i].t_s, path_mean.trajectory[i].t_s);
-    EXPECT_EQ(best.trajectory[i].covariance, mean.trajectory[i].covariance);  // the cloud's
+    // best: the cloud's covariance after the final particles' paths coalesce, none before
+    if (best.trajectory[i].has_covariance) EXPECT_EQ(best.trajectory[i].covariance, mean.trajectory[i].covariance);
+    else EXPECT_LE(best.trajectory[i].t_s, best.diagnostics.at("coalesced_until_s").front().second);
     EXPECT_LT((best.trajectory[i].pose.translation() - mean.trajectory[i].pose.translation()).norm(), 0.3);
   }
   EXPECT_LT(AteRmse(path_mean, s), 0.3);
@@ -179,8 +186,8 @@ TEST(FastSlamModule, TrajectoryChoicesShareTimesAndCarryCovariances) {
 TEST(FastSlamModule, BadConfigurationIsAnInputError) {
   EXPECT_THROW(FastSlam(FastSlamConfig{.particles = 0}, false), InputError);
   EXPECT_THROW(FastSlam(FastSlamConfig{.neff_threshold = 1.5}, true), InputError);
-  EXPECT_THROW(FastSlam(FastSlamConfig{.trajectory = "median"}, true), InputError);
   const ModuleInfo info = FastSlam2Module();
+  EXPECT_THROW(info.create({{"trajectory", "median"}}), InputError);
   EXPECT_THROW(info.create({{"particles", "-3"}}), InputError);
   EXPECT_THROW(info.create({{"no_such_field", "1"}}), InputError);
   for (const ParamInfo& p : info.params()) {

@@ -32,7 +32,7 @@ TEST(LandmarkGraph, NoiseFreeGraphIsAFixedPointAndPerturbedGuessConverges) {
   LandmarkGraph g;
   g.observation_covariance = Eigen::Vector2d(1e-4, 1e-6).asDiagonal();
   for (size_t i = 0; i < truth.size(); ++i) {
-    g.poses.push_back(truth[i].vector() + (i > 0 ? Eigen::Vector3d(0.2, -0.1, 0.05) : Eigen::Vector3d::Zero()));
+    g.poses.push_back(SE2::FromVector(truth[i].vector() + (i > 0 ? Eigen::Vector3d(0.2, -0.1, 0.05) : Eigen::Vector3d::Zero())));
     if (i > 0) g.odometry.push_back({static_cast<int>(i) - 1, Between(truth[i - 1], truth[i]), 1e-4 * Eigen::Matrix3d::Identity()});
     for (int j = 0; j < 2; ++j) g.observations.push_back({static_cast<int>(i), j, PredictObservation(truth[i], marks[j]).z});
   }
@@ -40,12 +40,38 @@ TEST(LandmarkGraph, NoiseFreeGraphIsAFixedPointAndPerturbedGuessConverges) {
   const LandmarkGraphSolution s = SolveLandmarkGraph(g, {});
   ASSERT_TRUE(s.usable);
   EXPECT_LT(s.chi2_final, 1e-8);
-  for (size_t i = 0; i < truth.size(); ++i) EXPECT_LT((g.poses[i] - truth[i].vector()).norm(), 1e-6);
+  for (size_t i = 0; i < truth.size(); ++i) EXPECT_LT((g.poses[i].vector() - truth[i].vector()).norm(), 1e-6);
   for (int j = 0; j < 2; ++j) EXPECT_LT((g.landmarks[j] - marks[j]).norm(), 1e-6);
   ASSERT_TRUE(s.covariance_ok);
   EXPECT_EQ(s.pose_covariances[0], Eigen::Matrix3d::Zero());
   // Uncertainty grows away from the anchor.
   EXPECT_GT(s.pose_covariances[2].trace(), s.pose_covariances[1].trace());
+}
+
+TEST(LandmarkGraph, HeadingsAcrossPlusMinusPiConverge) {
+  // Keyframes turning through theta = +-pi (3.0 -> -3.0 rad is a 0.28 rad turn), guesses
+  // perturbed across the wrap: the between-poses factor and bearing residuals wrap, the
+  // pose manifold keeps theta in [-pi, pi).
+  const std::vector<SE2> truth = {SE2(0, 0, 3.0), SE2(-1, 0.1, 3.1), SE2(-2, 0.1, -3.1), SE2(-3, 0, -3.0)};
+  const std::vector<Eigen::Vector2d> marks = {{-2, 3}, {-1.5, -2.5}, {-4, 1}};
+  LandmarkGraph g;
+  g.observation_covariance = Eigen::Vector2d(1e-4, 1e-6).asDiagonal();
+  for (size_t i = 0; i < truth.size(); ++i) {
+    g.poses.push_back(i == 0 ? truth[0] : SE2(truth[i].x + 0.1, truth[i].y - 0.1, truth[i].theta + (i % 2 ? 0.1 : -0.1)));
+    if (i > 0) g.odometry.push_back({static_cast<int>(i) - 1, Between(truth[i - 1], truth[i]), 1e-4 * Eigen::Matrix3d::Identity()});
+    for (int j = 0; j < 3; ++j) g.observations.push_back({static_cast<int>(i), j, PredictObservation(truth[i], marks[j]).z});
+  }
+  for (int j = 0; j < 3; ++j) g.landmarks[j] = marks[j] + Eigen::Vector2d(0.2, -0.2);
+  const LandmarkGraphSolution s = SolveLandmarkGraph(g, {});
+  ASSERT_TRUE(s.usable);
+  EXPECT_LT(s.chi2_final, 1e-8);
+  for (size_t i = 0; i < truth.size(); ++i) {
+    EXPECT_LT((g.poses[i].translation() - truth[i].translation()).norm(), 1e-6) << i;
+    EXPECT_LT(std::abs(NormalizeAngle(g.poses[i].theta - truth[i].theta)), 1e-6) << i;
+    EXPECT_GE(g.poses[i].theta, -M_PI);
+    EXPECT_LT(g.poses[i].theta, M_PI);
+  }
+  EXPECT_TRUE(s.covariance_ok);
 }
 
 TEST(GraphSlam, AtLeastAsAccurateAsEkfAndFarBetterThanOdometry) {

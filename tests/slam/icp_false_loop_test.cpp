@@ -72,7 +72,7 @@ PoseGraphSolveResult SolveIncrementally(TwoLapGraph& g, const PoseGraphSolveOpti
 
 TEST(IcpPoseSlamBackEnd, FalseLoopClosureIsSwitchedOff) {
   const IcpPoseSlamConfig defaults;
-  ASSERT_EQ(defaults.loop_kernel, "dcs");
+  ASSERT_EQ(defaults.loop_kernel, RobustKernel::kDcs);
   for (std::uint64_t seed = 0; seed < 3; ++seed) {
     TwoLapGraph g = MakeGraph(seed);
     PoseGraphSolveOptions options;

@@ -57,12 +57,59 @@ TEST(LoopClosure, CandidatesNearestFirstAfterEnoughTravel) {
   c.min_travel_m = 15;
   c.search_radius_m = 0.5;
   c.radius_per_travel = 0.0;
+  c.min_keyframe_gap = 1;
   const auto cand = FindLoopCandidates(poses, path, 4, c);
   ASSERT_EQ(cand.size(), 2u);
   EXPECT_EQ(cand[0].keyframe, 0);  // 0.1 m away
   EXPECT_EQ(cand[1].keyframe, 2);  // 0.28 m away
   c.min_travel_m = 30;             // keyframe 2 is too recent now
   EXPECT_EQ(FindLoopCandidates(poses, path, 4, c).size(), 1u);
+}
+
+// The inverse's covariance is J C J^T with J the Jacobian of T -> T^-1 over (x, y, theta);
+// J checked against central differences.
+TEST(LoopClosure, InverseCovarianceMatchesNumericJacobian) {
+  const SE2 T(1.3, -0.7, 2.9);
+  Eigen::Matrix3d J;
+  const double h = 1e-6;
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    d(k) = h;
+    const SE2 p = SE2(T.x + d(0), T.y + d(1), T.theta + d(2)).inverse();
+    const SE2 m = SE2(T.x - d(0), T.y - d(1), T.theta - d(2)).inverse();
+    J.col(k) = Eigen::Vector3d(p.x - m.x, p.y - m.y, NormalizeAngle(p.theta - m.theta)) / (2 * h);
+  }
+  const Eigen::Matrix3d C = Eigen::Vector3d(0.04, 0.01, 0.002).asDiagonal();
+  EXPECT_LT((InverseCovariance(T, C) - J * C * J.transpose()).cwiseAbs().maxCoeff(), 1e-8);
+}
+
+// On a chain the relative covariance is the chained composition; a certain shortcut
+// (a closure) is preferred over the long way round.
+TEST(LoopClosure, RelativeCovariancesFollowTheMostCertainPath) {
+  PoseGraph g;
+  const Eigen::Matrix3d info = Eigen::Vector3d(1e4, 1e4, 1e5).asDiagonal();
+  for (int i = 0; i < 6; ++i) g.poses.push_back(SE2(i * 1.0, 0.1 * i, 0.2 * i));
+  for (int i = 0; i + 1 < 6; ++i) g.edges.push_back({i, i + 1, Between(g.poses[i], g.poses[i + 1]), info, false});
+  auto rel = RelativeCovariances(g, 5, {}, 1e9);
+  // By hand: cov(T_3_5) = compose(T_3_4, C, T_4_5, C).
+  const Eigen::Matrix3d C = info.inverse();
+  const Eigen::Matrix3d c35 = ComposeCovariance(Between(g.poses[3], g.poses[4]), C, Between(g.poses[4], g.poses[5]), C);
+  EXPECT_LT((rel[3] - c35).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_TRUE(rel[5].isZero());
+  EXPECT_GT(rel[0].trace(), rel[3].trace());
+  const double far = rel[0](0, 0) + rel[0](1, 1);
+  g.edges.push_back({0, 5, Between(g.poses[0], g.poses[5]), info, true});
+  rel = RelativeCovariances(g, 5, {}, 1e9);
+  // Through the closure: the inverse of that one edge's covariance.
+  EXPECT_LT((rel[0] - C).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT(rel[0](0, 0) + rel[0](1, 1), far);
+  // Edges switched off are not used; nodes beyond max_trace are "unreached".
+  std::vector<bool> use(g.edges.size(), true);
+  use.back() = false;
+  rel = RelativeCovariances(g, 5, use, 1e9);
+  EXPECT_NEAR(rel[0](0, 0) + rel[0](1, 1), far, 1e-15);
+  rel = RelativeCovariances(g, 5, use, 1e-12);
+  EXPECT_EQ(rel[0](0, 0), 1e6);
 }
 
 TEST(LoopClosure, VerificationChecksEachCriterion) {

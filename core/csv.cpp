@@ -1,4 +1,4 @@
-#include "app/csv.hpp"
+#include "core/csv.hpp"
 
 #include "core/error.hpp"
 
