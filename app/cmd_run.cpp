@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "app/exec_module.hpp"
 #include "app/run.hpp"
 #include "core/error.hpp"
 
@@ -28,9 +29,13 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_flag("-q,--quiet", request->quiet, "no progress on stderr");
   cmd->add_option("--relations", request->relations_path,
                   "Kümmerle relations file of the log (t_i t_j dx dy dz roll pitch dtheta): relation_* on it");
+  auto inline_modules = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--exec", *inline_modules,
+                  "declare an exec module NAME[:NEED,...]=COMMAND, run as --algo exec:NAME (docs/exec_protocol.md)");
   cmd->add_flag("--skip-unavailable", request->skip_unavailable,
                 "skip listed modules whose sensors the stream lacks (instead of an error)");
-  cmd->callback([request, formats] {
+  cmd->callback([request, formats, inline_modules] {
+    for (const auto& m : *inline_modules) DeclareExecModule(ParseInlineDeclaration(m));
     if (request->algorithms.empty()) request->algorithms = {"odometry"};
     for (const auto& f : *formats) {
       if (f == "tum") continue;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/exec_module.hpp"
 #include "app/registry.hpp"
 #include "core/stream_io.hpp"
 #include "sim/scenario.hpp"
@@ -44,6 +45,11 @@ void PrintAlgorithms() {
     name_w = std::max(name_w, m.name.size());
     needs_w = std::max(needs_w, Needs(m.needs).size());
   }
+  const std::vector<const ModuleInfo*> exec = ExecModulesOnPath();  // declared on $SLAMBOX_EXEC_PATH
+  for (const ModuleInfo* m : exec) {
+    name_w = std::max(name_w, m->name.size());
+    needs_w = std::max(needs_w, Needs(m->needs).size());
+  }
   for (const auto& m : all) {
     std::cout << std::left << std::setw(static_cast<int>(name_w) + 2) << m.name
               << std::setw(static_cast<int>(needs_w) + 2) << Needs(m.needs) << m.description;
@@ -51,6 +57,9 @@ void PrintAlgorithms() {
     if (!m.unavailable.empty()) std::cout << " [unavailable: " << m.unavailable << "]";
     std::cout << "\n";
   }
+  for (const ModuleInfo* m : exec)
+    std::cout << std::left << std::setw(static_cast<int>(name_w) + 2) << m->name
+              << std::setw(static_cast<int>(needs_w) + 2) << Needs(m->needs) << m->description << " (exec)\n";
 }
 
 void PrintParams(const std::string& module_name) {

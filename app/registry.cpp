@@ -7,6 +7,7 @@
 #include <set>
 
 #include "app/plugins.hpp"
+#include "app/exec_module.hpp"
 #include "core/error.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/ekf_slam.hpp"
@@ -129,6 +130,7 @@ std::vector<ModuleInfo> AllModules() {
 }
 
 const ModuleInfo& FindModule(const std::string& name) {
+  if (name.rfind("exec:", 0) == 0) return FindExecModule(name);  // a child process (docs/exec_protocol.md)
   if (const Registered* m = FindRegistered(name)) return m->info;
   for (const auto& s : State().shipped) {
     if (s.name != name) continue;
@@ -142,7 +144,7 @@ const ModuleInfo& FindModule(const std::string& name) {
   std::string names;
   for (const auto& m : ListModules())
     if (m.unavailable.empty()) names += (names.empty() ? "" : ", ") + m.name;
-  throw InputError("--algo", 0, "unknown algorithm '" + name + "'", "use one of: " + names + ", or all");
+  throw InputError("--algo", 0, "unknown algorithm '" + name + "'", "use one of: " + names + ", all, or exec:NAME");
 }
 
 bool SensorsAllow(const ModuleInfo& module, const SensorSuite& sensors, bool has_map) {

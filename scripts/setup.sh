@@ -14,7 +14,7 @@ PACKAGES=(
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
   mrpt-common  # MRPT's own config_files/ (the peers' real-log settings come from them, slam/mrpt/README.md)
   clang-14 libfuzzer-14-dev  # scripts/fuzz.sh: libFuzzer harnesses of every reader (tests/fuzz/)
-  python3  # tests/plugins/example_plugin_test.sh compares results.csv rows
+  python3  # /usr/bin/python3: the exec example (examples/python/), the plugin test compares results.csv rows
   time  # /usr/bin/time: peak RSS in bench/startup.sh
 )
 # MRPT's own applications (icp-slam, rbpf-slam, graphslam-engine), only for the cross-check
