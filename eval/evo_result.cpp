@@ -11,12 +11,6 @@ namespace {
 
 using nlohmann::json;
 
-std::vector<double> Numbers(const json& array) {
-  std::vector<double> out;
-  for (const auto& v : array) out.push_back(v.is_number() ? v.get<double>() : std::nan(""));
-  return out;
-}
-
 // evo's title: str(APE) plus the alignment line of main_ape.
 std::string Title(AlignMode align) {
   const std::string base = "APE w.r.t. translation part (m)\n";
@@ -31,9 +25,9 @@ std::string Title(AlignMode align) {
 }  // namespace
 
 std::vector<ZipEntry> EvoApeResultEntries(const Evaluation& ev, AlignMode align, const EvoResultNames& names) {
-  const std::vector<double> errors = Numbers(ev.series.value("ate_m", json::array()));
-  const std::vector<double> t = Numbers(ev.series.value("t_s", json::array()));
-  const std::vector<double> distance = Numbers(ev.series.value("distance_m", json::array()));
+  const std::vector<double>& errors = ev.series.ate_m;
+  const std::vector<double>& t = ev.series.t_s;
+  const std::vector<double>& distance = ev.series.distance_m;
   std::vector<double> from_start(t.size());
   for (size_t i = 0; i < t.size(); ++i) from_start[i] = t[i] - t.front();
   const ErrorStatistics s = ComputeStatistics(errors);
@@ -49,9 +43,8 @@ std::vector<ZipEntry> EvoApeResultEntries(const Evaluation& ev, AlignMode align,
                                    {"timestamps.npz", NpyFloat64(t)},
                                    {"seconds_from_start.npz", NpyFloat64(from_start)},
                                    {"distances_from_start.npz", NpyFloat64(distance)}};
-  const json& a = ev.metrics.contains("alignment_se2") ? ev.metrics["alignment_se2"] : json();
-  if (align == AlignMode::kSE2 && a.is_array() && a.size() == 3) {
-    const double x = a[0].get<double>(), y = a[1].get<double>(), th = a[2].get<double>() * M_PI / 180.0;
+  if (const auto& a = ev.metrics.alignment_se2; align == AlignMode::kSE2 && a) {
+    const double x = (*a)[0], y = (*a)[1], th = (*a)[2] * M_PI / 180.0;
     const double c = std::cos(th), sn = std::sin(th);
     entries.push_back({"alignment_transformation_sim3.npz",
                        NpyFloat64Matrix({c, -sn, 0, x, sn, c, 0, y, 0, 0, 1, 0, 0, 0, 0, 1}, 4, 4)});

@@ -14,9 +14,9 @@
 #include "core/atomic_file.hpp"
 #include "core/json_io.hpp"
 #include "core/tum.hpp"
-#include "render/figures_run.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulate.hpp"
+#include "tests/support/slambox_cli.hpp"
 
 namespace slambox {
 namespace {
@@ -95,7 +95,8 @@ void RunPoisoned(bool covariance_only) {
                   nlohmann::json{{"scenario", "landmarks"}, {"seed", 3}, {"world", ToJson(stream.header.world)}}.dump());
   WriteFileAtomic((dir / "metrics.json").string(),
                   nlohmann::json{{"scenario", "landmarks"}, {"seed", 3}, {"algorithms", {{"poisoned", m}}}}.dump(1));
-  EXPECT_NO_THROW(render::RenderRunFigures(dir.string()));
+  const auto report = slambox::testing::RunSlambox(SLAMBOX_BINARY, "report " + dir.string());  // figures + report
+  EXPECT_EQ(report.code, 0) << report.output;
   ExpectNoNonFiniteText(dir);
   fs::remove_all(dir);
 }

@@ -54,14 +54,14 @@ TEST(EvoResult, KeysAndArrayShapesOfEvoApe) {
   EXPECT_EQ(info["label"], "APE (m)");
   const json stats = json::parse(entries["stats.json"]);
   for (const char* k : {"rmse", "mean", "median", "std", "min", "max", "sse"}) EXPECT_TRUE(stats[k].is_number()) << k;
-  EXPECT_DOUBLE_EQ(stats["rmse"].get<double>(), ev.metrics["ate_rmse_m"].get<double>());
-  EXPECT_DOUBLE_EQ(stats["max"].get<double>(), ev.metrics["ate_max_m"].get<double>());
+  EXPECT_DOUBLE_EQ(stats["rmse"].get<double>(), ev.metrics.ate.rmse);
+  EXPECT_DOUBLE_EQ(stats["max"].get<double>(), ev.metrics.ate.max);
   const auto [shape, errors] = ParseNpy(entries["error_array.npz"]);
   EXPECT_EQ(shape, "(40,)");
   ASSERT_EQ(errors.size(), 40u);
   double sse = 0;
   for (int i = 0; i < 40; ++i) {
-    EXPECT_EQ(errors[i], ev.series["ate_m"][i].get<double>());
+    EXPECT_EQ(errors[i], ev.series.ate_m[i]);
     sse += errors[i] * errors[i];
   }
   EXPECT_NEAR(stats["sse"].get<double>(), sse, 1e-12);
@@ -120,14 +120,14 @@ print(json.dumps(out))
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const json out = json::parse(std::ifstream(dir / "out.json"));
   EXPECT_EQ(out["info"]["est_name"], "est");
-  EXPECT_DOUBLE_EQ(out["stats"]["rmse"].get<double>(), ev.metrics["ate_rmse_m"].get<double>());
+  EXPECT_DOUBLE_EQ(out["stats"]["rmse"].get<double>(), ev.metrics.ate.rmse);
   for (const char* n : {"error_array", "timestamps", "seconds_from_start", "distances_from_start"}) {
     EXPECT_EQ(out["arrays"][n]["shape"], json::array({40})) << n;
     EXPECT_EQ(out["arrays"][n]["dtype"], "float64") << n;
   }
   EXPECT_EQ(out["arrays"]["alignment_transformation_sim3"]["shape"], json::array({4, 4}));
   double sum = 0;
-  for (const auto& v : ev.series["ate_m"]) sum += v.get<double>();
+  for (const double v : ev.series.ate_m) sum += v;
   EXPECT_NEAR(out["arrays"]["error_array"]["sum"].get<double>(), sum, 1e-12);
   fs::remove_all(dir);
 }

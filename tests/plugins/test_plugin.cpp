@@ -12,12 +12,16 @@ namespace {
 
 using namespace slambox;
 
+enum class FaultKind { kCrash, kHang, kThrow };
+
 struct FaultConfig {
-  std::string fault = "crash";  ///< what happens on an odd seed
+  FaultKind fault = FaultKind::kCrash;  ///< what happens on an odd seed
 };
 
 void BindParams(FaultConfig& c, ParamBinder& b) {
-  b.Bind("fault", c.fault, {"crash", "hang", "throw"}, "what the module does on a stream with an odd seed");
+  static const EnumNames<FaultKind> names = {{FaultKind::kCrash, "crash"}, {FaultKind::kHang, "hang"},
+                                             {FaultKind::kThrow, "throw"}};
+  b.Bind("fault", c.fault, names, "what the module does on a stream with an odd seed");
 }
 
 class Fault : public SlamModule {
@@ -25,8 +29,8 @@ class Fault : public SlamModule {
   explicit Fault(const FaultConfig& c) : config_(c) {}
   void Start(const StreamHeader& header) override {
     if (header.seed % 2 == 0) return;
-    if (config_.fault == "crash") std::abort();
-    if (config_.fault == "throw") throw std::runtime_error("test-fault throws on odd seeds");
+    if (config_.fault == FaultKind::kCrash) std::abort();
+    if (config_.fault == FaultKind::kThrow) throw std::runtime_error("test-fault throws on odd seeds");
     for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
   }
   Estimate Finish() override { return {}; }
