@@ -1,19 +1,23 @@
-// `slambox eval --gt GT.tum --est EST.tum`: scores any TUM trajectory against another
-// (also files from other tools; 3D files are reduced to x, y and yaw) with the same
-// evaluator `slambox run` uses. --json prints one algorithm's metrics.json entry.
+// `slambox eval --gt GT --est EST`: scores any TUM or KITTI trajectory against another
+// (also files from other tools; 3D TUM files are reduced to x, y and yaw) with the same
+// evaluator `slambox run` uses. --json prints one algorithm's metrics.json entry;
+// --save-results FILE.zip writes evo's result archive (for evo_res).
 // `--relations FILE` (with or without --gt) scores it on Kümmerle relations; their times
 // are the log's clock, mapped by `--stream` (a converted log's header) or `--time-origin-s`.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "core/kitti_poses.hpp"
 #include "core/stream_io.hpp"
 #include "core/tum.hpp"
 #include "eval/evaluate.hpp"
+#include "eval/evo_result.hpp"
 
 namespace slambox {
 
@@ -29,12 +33,35 @@ struct EvalArgs {
   double t_max_diff_s = 0.01;
   bool interpolate = false;
   bool json = false;
+  std::string save_results;
   std::string relations_path;
   std::string stream_path;       ///< the converted log, for its time origin
   double time_origin_s = 0.0;
   bool time_origin_given = false;
   double relation_max_diff_s = RelationMatchOptions{}.max_time_diff_s;
 };
+
+// TUM or KITTI by content. KITTI poses are stamped with their line index, so two KITTI
+// files match line by line (evo_ape kitti); a KITTI file cannot be matched to a TUM one.
+struct Trajectories {
+  std::vector<StampedPose> gt, est;
+};
+Trajectories ReadTrajectories(const std::string& gt_path, const std::string& est_path) {
+  const TrajectoryFormat gt_format = DetectTrajectoryFormat(gt_path);
+  const TrajectoryFormat est_format = DetectTrajectoryFormat(est_path);
+  if (gt_format != est_format)
+    throw InputError(gt_format == TrajectoryFormat::kKitti ? gt_path : est_path, 0,
+                     "a KITTI file (no timestamps) cannot be matched to a TUM file",
+                     "give both files as TUM, or both as KITTI with one line per matched pose");
+  if (gt_format == TrajectoryFormat::kTum) return {ReadTum(gt_path), ReadTum(est_path)};
+  Trajectories t{ReadKittiPoses(gt_path), ReadKittiPoses(est_path)};
+  if (t.gt.size() != t.est.size())
+    throw InputError(est_path, 0,
+                     "KITTI files must have the same number of poses (" + std::to_string(t.gt.size()) + " vs " +
+                         std::to_string(t.est.size()) + ")",
+                     "write both at the same matched poses (slambox run --format kitti does)");
+  return t;
+}
 
 EvalOptions ToOptions(const EvalArgs& a) {
   EvalOptions o;
@@ -124,8 +151,9 @@ void PrintTable(const nlohmann::json& m, std::ostream& out) {
 void AddEvalCommand(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
   CLI::App* cmd = app.add_subcommand("eval", "score an estimated TUM trajectory against ground truth (evo's definitions)");
-  cmd->add_option("--gt", args->gt_path, "ground-truth trajectory (TUM: t x y z qx qy qz qw); needs --gt or --relations");
-  cmd->add_option("--est", args->est_path, "estimated trajectory (TUM)")->required();
+  cmd->add_option("--gt", args->gt_path,
+                  "ground-truth trajectory (TUM: t x y z qx qy qz qw, or KITTI: 3 x 4 poses); needs --gt or --relations");
+  cmd->add_option("--est", args->est_path, "estimated trajectory (TUM, or KITTI with a KITTI --gt)")->required();
   cmd->add_option("--align", args->align,
                   "alignment before ate_*: none (default), se2 (Umeyama, evo -a) or origin (evo --align_origin)");
   cmd->add_option("--delta", args->delta, "RPE delta (default 1)");
@@ -136,6 +164,8 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_option("--t-max-diff", args->t_max_diff_s, "max. timestamp difference for matching [s] (default 0.01)");
   cmd->add_flag("--interpolate", args->interpolate, "interpolate ground truth at the estimate's timestamps");
   cmd->add_flag("--json", args->json, "print the metrics as JSON (the keys of one metrics.json entry)");
+  cmd->add_option("--save-results", args->save_results,
+                  "write evo's result archive (info.json, stats.json, error_array.npz, ...) for evo_res; needs --gt");
   cmd->add_option("--relations", args->relations_path,
                   "Kümmerle relations file (t_i t_j dx dy dz roll pitch dtheta, the log's clock): relation_* on it");
   cmd->add_option("--stream", args->stream_path, "the converted log the estimate came from: its time origin maps the relations");
@@ -146,14 +176,20 @@ void AddEvalCommand(CLI::App& app) {
   cmd->callback([args] {
     if (args->gt_path.empty() && args->relations_path.empty())
       throw InputError("--gt", 0, "nothing to score against", "give --gt GT.tum, --relations FILE, or both");
+    if (!args->save_results.empty() && args->gt_path.empty())
+      throw InputError("--save-results", 0, "evo's result archive holds the APE: it needs ground truth", "give --gt GT");
     const EvalOptions options = ToOptions(*args);
     GroundTruth gt;
+    Trajectories files;
     if (!args->gt_path.empty()) {
-      gt.trajectory = ReadTum(args->gt_path);
+      files = ReadTrajectories(args->gt_path, args->est_path);
+      gt.trajectory = std::move(files.gt);
       if (gt.trajectory.empty()) throw InputError(args->gt_path, 0, "no pose in the file", "give a non-empty TUM file");
+    } else {
+      files.est = ReadTum(args->est_path);  // relations need the estimate's timestamps
     }
     Estimate est;
-    for (const auto& p : ReadTum(args->est_path)) est.trajectory.push_back({p.t_s, p.pose, Eigen::Matrix3d::Zero(), false});
+    for (const auto& p : files.est) est.trajectory.push_back({p.t_s, p.pose, Eigen::Matrix3d::Zero(), false});
     if (est.trajectory.empty())
       throw InputError(args->est_path, 0, "no pose in the file", "give a non-empty TUM file");
     const Evaluation ev = EvaluateEstimate(gt, est, options);
@@ -166,6 +202,10 @@ void AddEvalCommand(CLI::App& app) {
                        "no relation time has an estimate pose within " + std::to_string(args->relation_max_diff_s) +
                            " s (time origin " + std::to_string(options.relation_matching.time_origin_s) + " s)",
                        "give --stream STREAM (the converted log) or --time-origin-s, or the relations of this log");
+    if (!args->save_results.empty()) {
+      auto stem = [](const std::string& path) { return std::filesystem::path(path).stem().string(); };
+      WriteEvoApeResult(args->save_results, ev, options.align, {stem(args->gt_path), stem(args->est_path)});
+    }
     if (args->json)
       std::cout << ToJson(ev.metrics).dump(2) << "\n";
     else

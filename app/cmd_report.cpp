@@ -4,9 +4,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
-#include "render/figures_run.hpp"
-#include "render/figures_sweep.hpp"
-#include "render/report.hpp"
+#include "app/render_library.hpp"
 
 namespace slambox {
 
@@ -38,18 +36,18 @@ void AddReportCommand(CLI::App& app) {
   cmd->add_flag("--rerender", *force, "re-render the figures even when they are up to date");
   cmd->callback([dir, frames, force] {
     const fs::path d(*dir);
-    const render::FolderKind kind = render::DetectFolder(*dir);  // InputError for anything else
+    const render::FolderKind kind = Render().detect_folder(*dir);  // InputError for anything else
     if (kind == render::FolderKind::kRun) {
-      if (*force || FiguresStale(d, d / "metrics.json")) render::RenderRunFigures(*dir);
+      if (*force || FiguresStale(d, d / "metrics.json")) Render().run_figures(*dir);
       if (*frames) {
-        const int n = render::RenderRunFrames(*dir);
+        const int n = Render().run_frames(*dir);
         std::cout << "wrote " << n << " frames to " << (d / "frames").string() << "\n";
       }
     } else {
       const fs::path results = d / "results.csv";
-      if (*force || !fs::exists(results) || FiguresStale(d, results)) render::RenderSweepFigures(*dir);
+      if (*force || !fs::exists(results) || FiguresStale(d, results)) Render().sweep_figures(*dir);
     }
-    render::WriteReport(*dir);
+    Render().write_report(*dir);
     std::cout << "wrote " << (d / "report.md").string() << " and " << (d / "report.html").string() << "\n";
   });
 }

@@ -2,7 +2,9 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "app/exec_module.hpp"
 #include "app/run.hpp"
+#include "core/error.hpp"
 
 namespace slambox {
 
@@ -13,18 +15,33 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--algo", request->algorithms, "modules to run (comma-separated), or all")
       ->delimiter(',')
       ->default_str("odometry");
+  cmd->add_option("--plugin", request->plugins, "load a module plugin first (repeatable; see docs/plugins.md)")
+      ->type_name("PATH.so");
   cmd->add_option("--seed", request->seed, "simulation seed (scenarios only)")
       ->each([request](const std::string&) { request->seed_given = true; });
   cmd->add_option("--set", request->sets, "override KEY=VALUE (scenario keys, or algo.NAME.FIELD)");
   cmd->add_option("-o,--output", request->output_dir, "output folder")->required();
+  auto formats = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--format", *formats,
+                  "trajectory files besides TUM: kitti (<algo>.kitti + <algo>.groundtruth.kitti, matched poses)")
+      ->delimiter(',');
   cmd->add_flag("--no-figures", [request](std::int64_t) { request->figures = false; }, "skip figures");
   cmd->add_flag("-q,--quiet", request->quiet, "no progress on stderr");
   cmd->add_option("--relations", request->relations_path,
                   "Kümmerle relations file of the log (t_i t_j dx dy dz roll pitch dtheta): relation_* on it");
+  auto inline_modules = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--exec", *inline_modules,
+                  "declare an exec module NAME[:NEED,...]=COMMAND, run as --algo exec:NAME (docs/exec_protocol.md)");
   cmd->add_flag("--skip-unavailable", request->skip_unavailable,
                 "skip listed modules whose sensors the stream lacks (instead of an error)");
-  cmd->callback([request] {
+  cmd->callback([request, formats, inline_modules] {
+    for (const auto& m : *inline_modules) DeclareExecModule(ParseInlineDeclaration(m));
     if (request->algorithms.empty()) request->algorithms = {"odometry"};
+    for (const auto& f : *formats) {
+      if (f == "tum") continue;
+      if (f != "kitti") throw InputError("--format " + f, 0, "unknown trajectory format", "use tum or kitti");
+      request->formats.push_back(TrajectoryFormat::kKitti);
+    }
     const auto doc = RunAndWrite(*request);
     int bad = 0;
     for (const auto& [name, m] : doc["algorithms"].items()) {

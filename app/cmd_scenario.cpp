@@ -9,9 +9,11 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/exec_module.hpp"
 #include "app/registry.hpp"
 #include "core/stream_io.hpp"
 #include "sim/scenario.hpp"
+#include "sim/scenario_limits.hpp"
 
 namespace slambox {
 namespace {
@@ -35,15 +37,29 @@ void PrintScenarios() {
   for (const auto& s : all) std::cout << std::left << std::setw(static_cast<int>(width) + 2) << s.name << s.description << "\n";
 }
 
+// Plugin modules say which plugin they come from; a shipped plugin is not loaded for this.
 void PrintAlgorithms() {
+  const std::vector<ModuleListing> all = ListModules();
   std::size_t name_w = 0, needs_w = 0;
-  for (const auto& m : AllModules()) {
+  for (const auto& m : all) {
     name_w = std::max(name_w, m.name.size());
     needs_w = std::max(needs_w, Needs(m.needs).size());
   }
-  for (const auto& m : AllModules())
+  const std::vector<const ModuleInfo*> exec = ExecModulesOnPath();  // declared on $SLAMBOX_EXEC_PATH
+  for (const ModuleInfo* m : exec) {
+    name_w = std::max(name_w, m->name.size());
+    needs_w = std::max(needs_w, Needs(m->needs).size());
+  }
+  for (const auto& m : all) {
     std::cout << std::left << std::setw(static_cast<int>(name_w) + 2) << m.name
-              << std::setw(static_cast<int>(needs_w) + 2) << Needs(m.needs) << m.description << "\n";
+              << std::setw(static_cast<int>(needs_w) + 2) << Needs(m.needs) << m.description;
+    if (!m.origin.empty()) std::cout << " (" << m.origin << ")";
+    if (!m.unavailable.empty()) std::cout << " [unavailable: " << m.unavailable << "]";
+    std::cout << "\n";
+  }
+  for (const ModuleInfo* m : exec)
+    std::cout << std::left << std::setw(static_cast<int>(name_w) + 2) << m->name
+              << std::setw(static_cast<int>(needs_w) + 2) << Needs(m->needs) << m->description << " (exec)\n";
 }
 
 void PrintParams(const std::string& module_name) {
@@ -89,16 +105,21 @@ void AddScenarioCommands(CLI::App& app) {
                                *overrides)
             : LoadScenario(*target, *overrides);
     std::cout << ScenarioToYaml(scenario);
+    std::cout << "# " << DescribeStreamSize(EstimateStreamSize(scenario)) << "\n";  // a comment: still valid YAML
   });
 
   CLI::App* algorithms = app.add_subcommand(
       "algorithms", "List the registered SLAM modules (name, sensors needed, description), or one module's parameters");
   auto params_of = std::make_shared<std::string>();
+  auto plugins = std::make_shared<std::vector<std::string>>();
+  algorithms->add_option("--plugin", *plugins, "also list the modules of this module plugin (repeatable)")
+      ->type_name("PATH.so");
   algorithms->add_option("--params", *params_of,
                          "list the parameters of module NAME (settable as --set algo.NAME.FIELD=VALUE) with "
                          "type, default, unit and meaning")
       ->type_name("NAME");
-  algorithms->callback([params_of] {
+  algorithms->callback([params_of, plugins] {
+    for (const auto& p : *plugins) LoadPlugin(p);
     if (params_of->empty())
       PrintAlgorithms();
     else

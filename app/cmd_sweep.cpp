@@ -12,16 +12,17 @@
 
 #include "app/commands.hpp"
 #include "app/registry.hpp"
+#include "app/render_library.hpp"
 #include "app/run.hpp"
 #include "app/sweep_exec.hpp"
+#include "app/sweep_lock.hpp"
 #include "app/sweep_slurm.hpp"
+#include "app/sweep_check.hpp"
 #include "app/sweep_summary.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/stream_io.hpp"
 #include "eval/relations.hpp"
-#include "render/figures_sweep.hpp"
-#include "render/report.hpp"
 #include "sim/scenario.hpp"
 
 namespace slambox {
@@ -35,6 +36,7 @@ struct SweepArgs {
   int jobs = 0, shards = 8, cpus_per_task = 2;
   double tolerance = 0.10, tolerance_abs = 0.0, timeout_s = 0.0;
   bool resume = false, list = false, emit_slurm = false, figures = true;
+  std::vector<std::string> plugins;  ///< --plugin
 };
 
 void ParseShard(const std::string& text, std::size_t& index, std::size_t& count) {
@@ -76,41 +78,37 @@ void WriteManifest(const std::string& dir, const SweepSpec& spec) {
   WriteFileAtomic(dir + "/sweep.json", manifest.dump(1) + "\n");
 }
 
-int Check(const SweepArgs& a, const std::string& dir) {
-  const auto regressions = CheckBaseline(dir + "/results.csv", a.check, a.tolerance, a.tolerance_abs);
-  if (regressions.empty()) {
-    std::cout << "check: no cell got worse than " << a.check << " beyond tolerance " << a.tolerance << "\n";
-    return 0;
-  }
-  std::cerr << "check: " << regressions.size() << " regression(s) against " << a.check << ":\n";
-  for (const auto& r : regressions) {
-    std::cerr << "  " << r.cell << "  " << r.metric << ": baseline " << r.baseline_mean << " -> ";
-    if (std::isnan(r.current_mean)) std::cerr << "missing\n";
-    else std::cerr << r.current_mean << " (+" << 100.0 * (r.current_mean / r.baseline_mean - 1.0) << "%)\n";
-  }
-  return 4;
+int Check(const SweepArgs& a, const std::string& dir, const SweepSpec& spec) {
+  CheckOptions options{.tolerance = {.relative = a.tolerance, .absolute = a.tolerance_abs}};
+  for (const auto& [metric, tol] : spec.check_tolerances) options.per_metric[metric] = {tol.first, tol.second};
+  const CheckReport report = CheckAgainstBaseline(ReadResultsCsv(dir + "/results.csv"), ReadResultsCsv(a.check), options);
+  (report.regressions.empty() ? std::cout : std::cerr) << FormatCheckReport(report, a.check, options);
+  return report.regressions.empty() ? 0 : 4;
 }
 
 void Finish(const SweepArgs& a, const std::string& dir, const SweepSpec& spec, const std::vector<SweepRun>& runs) {
   WriteSweepSummary(dir, spec, runs);
   if (a.figures) {
-    render::RenderSweepFigures(dir);
-    render::WriteReport(dir);
+    Render().sweep_figures(dir);
+    Render().write_report(dir);
   }
   std::cout << "wrote " << dir << "/results.csv, summary.md" << (a.figures ? ", report.html" : "") << "\n";
   if (!a.check.empty())
-    if (const int code = Check(a, dir)) throw CommandExit{code};
+    if (const int code = Check(a, dir, spec)) throw CommandExit{code};
 }
 
 void Sweep(const SweepArgs& a) {
   if (!a.merge_dir.empty()) {  // rebuild the summary from the shards' run results
     const SweepSpec spec = LoadSweepSpec(a.merge_dir + "/sweep.yaml");
+    const SweepLock lock(a.merge_dir, ".lock");
     Finish(a, a.merge_dir, spec, ExpandSweep(spec));
     return;
   }
   if (a.sweep_file.empty()) throw InputError("sweep", 0, "no sweep file given", "slambox sweep SWEEP.yaml -o DIR (or --merge DIR)");
   SweepSpec spec = LoadSweepSpec(a.sweep_file);
   if (a.timeout_s > 0) spec.timeout_s = a.timeout_s;
+  std::vector<std::string> plugins = spec.plugins;  // the sweep file's, then --plugin
+  for (const auto& p : a.plugins) plugins.push_back(fs::absolute(p).string());
   const std::vector<SweepRun> all = ExpandSweep(spec);
   if (a.list) {
     for (const auto& r : all) {
@@ -124,19 +122,26 @@ void Sweep(const SweepArgs& a) {
   const std::string exe = fs::read_symlink("/proc/self/exe").string();
   if (a.emit_slurm) {
     fs::create_directories(a.out_dir + "/slurm");
+    std::vector<std::string> cli_plugins;
+    for (const auto& p : a.plugins) cli_plugins.push_back(fs::absolute(p).string());
     std::cout << SlurmArrayScript({fs::absolute(a.sweep_file).string(), fs::absolute(a.out_dir).string(), exe,
-                                   a.shards, a.cpus_per_task, a.time_limit, a.partition});
+                                   a.shards, a.cpus_per_task, a.time_limit, a.partition, cli_plugins});
     return;
   }
+  for (const auto& p : plugins) LoadPlugin(p);  // before the workers fork: they inherit the modules
   Validate(spec, all);
   std::vector<SweepRun> mine = all;
+  std::string lock_name = ".lock";
   if (!a.shard.empty()) {
     std::size_t index = 0, count = 0;
     ParseShard(a.shard, index, count);
+    lock_name = ".lock.shard-" + std::to_string(index) + "-of-" + std::to_string(count);
     mine.clear();
     for (const auto& r : all)
       if (r.index % count == index) mine.push_back(r);
   }
+  // Before looking at what is done: a running sweep's half-done folder is not "done".
+  const SweepLock lock(a.out_dir, lock_name);
   if (!a.resume)
     for (const auto& r : mine)
       if (RunComplete(a.out_dir, r))
@@ -149,6 +154,7 @@ void Sweep(const SweepArgs& a) {
   o.out_dir = a.out_dir;
   o.worker_exe = a.worker_exe;
   o.algorithms = spec.algorithms;
+  o.plugins = plugins;
   o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.timeout_s = spec.timeout_s;
   o.progress_bar = isatty(STDERR_FILENO);
@@ -165,6 +171,8 @@ void AddSweepCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("sweep", "run scenarios x algorithms x parameter grid x seeds in parallel");
   cmd->add_option("sweep_file", a->sweep_file, "sweep YAML (scenarios, algorithms, seeds, grid)");
   cmd->add_option("-o,--output", a->out_dir, "output folder");
+  cmd->add_option("--plugin", a->plugins, "load a module plugin for every run (repeatable; also `plugins:` in the file)")
+      ->type_name("PATH.so");
   cmd->add_option("-j,--jobs", a->jobs, "worker processes (default: cores)");
   cmd->add_flag("--resume", a->resume, "skip runs that already have a result");
   cmd->add_option("--shard", a->shard, "run only shard I of N (I/N, 0-based), e.g. $SLURM_ARRAY_TASK_ID/8");

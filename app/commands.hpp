@@ -18,5 +18,7 @@ void AddReportCommand(CLI::App& app);      // report
 void AddOptimizeCommand(CLI::App& app);    // optimize
 void AddSweepCommand(CLI::App& app);       // sweep
 void AddConvertCommand(CLI::App& app);     // convert carmen
+void AddExportCommand(CLI::App& app);      // export (stream as JSON Lines / CSV)
+void AddExecCheckCommand(CLI::App& app);   // exec-check (exec protocol conformance)
 
 }  // namespace slambox

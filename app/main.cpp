@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   slambox::AddOptimizeCommand(app);
   slambox::AddSweepCommand(app);
   slambox::AddConvertCommand(app);
+  slambox::AddExportCommand(app);
+  slambox::AddExecCheckCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -11,14 +11,18 @@
 #include <iostream>
 
 #include "app/registry.hpp"
+#include "app/render_library.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/finite_estimate.hpp"
 #include "core/json_io.hpp"
+#include "core/ros_map.hpp"
 #include "core/stream_io.hpp"
 #include "core/tum.hpp"
 #include "core/version.hpp"
+#include "eval/association.hpp"
 #include "eval/evaluate.hpp"
-#include "render/figures_run.hpp"
+#include "eval/grid_map.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulate.hpp"
 
@@ -55,9 +59,47 @@ std::vector<StampedPose> Poses(const Estimate& e) {
 
 void WriteJson(const fs::path& path, const json& j) { WriteFileAtomic(path.string(), j.dump(1) + "\n"); }
 
+// KITTI files have no timestamps: write the matched pairs, line by line.
+void WriteKittiPair(const fs::path& dir, const std::string& name, const std::vector<StampedPose>& groundtruth,
+                    const std::vector<StampedPose>& estimate) {
+  if (groundtruth.empty()) {
+    WriteKittiPoses((dir / (name + ".kitti")).string(), estimate);
+    return;
+  }
+  const Association a = Associate(groundtruth, estimate);
+  std::vector<StampedPose> gt, est;
+  for (size_t k = 0; k < a.t_s.size(); ++k) {
+    gt.push_back({a.t_s[k], a.groundtruth[k]});
+    est.push_back({a.t_s[k], a.estimate[k]});
+  }
+  WriteKittiPoses((dir / (name + ".kitti")).string(), est);
+  WriteKittiPoses((dir / (name + ".groundtruth.kitti")).string(), gt);
+}
+
 }  // namespace
 
+Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream, const EvalOptions& options,
+                          const std::string& dir, const std::vector<TrajectoryFormat>& formats) {
+  ModuleRun run = ReplayAndScore(module, stream, options);
+  if (!run.estimate) return run.metrics;
+  const fs::path d(dir);
+  try {
+    const Estimate written = FiniteEstimate(*run.estimate);  // no NaN in a file (diverged says where)
+    WriteTum((d / (name + ".tum")).string(), Poses(written));
+    if (std::count(formats.begin(), formats.end(), TrajectoryFormat::kKitti))
+      WriteKittiPair(d, name, stream.groundtruth, Poses(written));
+    WriteJson(d / "estimates" / (name + ".json"), ToJson(written));
+    if (written.grid && written.grid->width > 0 && written.grid->height > 0)
+      WriteRosMap((d / "maps" / (name + ".yaml")).string(), *written.grid);
+    WriteJson(d / "series" / (name + ".json"), ToJson(run.series));
+  } catch (const std::exception& e) {  // as a failing module: the others go on
+    run.metrics = UnscoredMetrics(RunStatus::kFailed, e.what());
+  }
+  return run.metrics;
+}
+
 json RunAndWrite(const RunRequest& request) {
+  for (const auto& p : request.plugins) LoadPlugin(p);
   const Overrides overrides = SplitOverrides(request.sets);
   const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
   const std::vector<std::string> names = ResolveAlgorithms(request.algorithms, stream.header.sensors,
@@ -84,28 +126,20 @@ json RunAndWrite(const RunRequest& request) {
                                  {"seed", stream.header.seed},
                                  {"duration_s", stream.header.duration_s},
                                  {"world", ToJson(stream.header.world)}});
+  if (const OccupancyGrid truth = TrueOccupancyGrid(stream.header.world); truth.width > 0)
+    WriteRosMap((dir / "maps" / "groundtruth.yaml").string(), truth);
 
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
-    ModuleRun run = ReplayAndScore(*modules[i], stream, options);
-    if (run.estimate) {
-      try {
-        WriteTum((dir / (name + ".tum")).string(), Poses(*run.estimate));
-        WriteJson(dir / "estimates" / (name + ".json"), ToJson(*run.estimate));
-        WriteJson(dir / "series" / (name + ".json"), ToJson(run.series));
-      } catch (const std::exception& e) {  // as a failing module: the others go on
-        run.metrics = UnscoredMetrics(RunStatus::kFailed, e.what());
-      }
-    }
-    const Metrics& metrics = run.metrics;
+    const Metrics metrics = RunModuleAndWrite(*modules[i], name, stream, options, dir.string(), request.formats);
     modules[i].reset();
     doc["algorithms"][name] = ToJson(metrics);
     if (progress) std::cerr << " " << RunStatusName(metrics.status) << "\n";
   }
   doc["peak_rss_mb"] = PeakRssMb();
   WriteJson(dir / "metrics.json", doc);
-  if (request.figures) render::RenderRunFigures(dir.string());
+  if (request.figures) Render().run_figures(dir.string());
   return doc;
 }
 

@@ -44,7 +44,7 @@ std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& reque
     if (!SensorsAllow(m, sensors, has_map))
       throw InputError("--algo " + r, 0, "'" + r + "' localizes in a known map and the stream's world has no walls",
                        "run it on a scenario (a converted real log carries no map)");
-    names.push_back(r);
+    names.push_back(m.name);  // canonical: exec:PATH/NAME.yaml runs as exec:NAME
   }
   if (names.empty()) throw InputError("--algo", 0, "no algorithm to run", "give --algo NAME[,NAME...] or all");
   return names;
@@ -94,6 +94,8 @@ ModuleRun ReplayAndScore(SlamModule& module, const Stream& stream, const EvalOpt
     run.metrics = std::move(evaluation.metrics);
     run.series = std::move(evaluation.series);
     run.estimate = std::move(estimate);
+  } catch (const ModuleDiverged& e) {  // e.g. an exec child's NaN pose
+    run.metrics = UnscoredMetrics(RunStatus::kDiverged, e.what());
   } catch (const std::exception& e) {  // a failing module never takes the others down
     run.metrics = UnscoredMetrics(RunStatus::kFailed, e.what());
   }

@@ -57,6 +57,10 @@ pid_t Launch(const SweepRun& run, const ExecOptions& o) {
     args.push_back("--set");
     args.push_back(s);
   }
+  for (const auto& p : o.plugins) {
+    args.push_back("--plugin");
+    args.push_back(p);
+  }
   const std::string log = dir + "/log.txt";
   const pid_t parent = getpid();
   const pid_t pid = fork();

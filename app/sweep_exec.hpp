@@ -18,6 +18,9 @@ struct ExecOptions {
   /// empty: the forked sweep process runs it in-process (no exec).
   std::string worker_exe;
   std::vector<std::string> algorithms;
+  /// Module plugins: loaded by the sweep before it forks (its children inherit them),
+  /// passed as `--plugin` to an exec'd worker.
+  std::vector<std::string> plugins;
   int jobs = 1;
   double timeout_s = 1800.0;
   bool progress_bar = false;  ///< a redrawn bar on a terminal; plain log lines otherwise

@@ -28,7 +28,9 @@ std::string SlurmArrayScript(const SlurmOptions& o) {
   s << "set -euo pipefail\n"
     << "mkdir -p " << Quote(o.out_dir + "/slurm") << "\n"
     << "exec " << Quote(o.slambox_exe) << " sweep " << Quote(o.sweep_file) << " -o " << Quote(o.out_dir)
-    << " --resume --shard \"${SLURM_ARRAY_TASK_ID}/" << o.shards << "\" -j \"${SLURM_CPUS_PER_TASK:-"
+    << " --resume";
+  for (const auto& p : o.plugins) s << " --plugin " << Quote(p);
+  s << " --shard \"${SLURM_ARRAY_TASK_ID}/" << o.shards << "\" -j \"${SLURM_CPUS_PER_TASK:-"
     << o.cpus_per_task << "}\"\n";
   return s.str();
 }

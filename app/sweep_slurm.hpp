@@ -2,6 +2,7 @@
 // An sbatch script for a Slurm job array whose tasks each run one shard of a sweep
 // (never one task per run: MaxArraySize defaults to 1001 and sites cap job counts).
 #include <string>
+#include <vector>
 
 namespace slambox {
 
@@ -13,6 +14,7 @@ struct SlurmOptions {
   int cpus_per_task = 2;      ///< also the shard's -j
   std::string time_limit = "04:00:00";
   std::string partition;      ///< empty = the site default
+  std::vector<std::string> plugins;  ///< `--plugin` files (absolute), passed to every task
 };
 
 /// The script: `sbatch job.sh` submits the array; after it, `slambox sweep --merge DIR`

@@ -5,11 +5,15 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "core/stream_io.hpp"
 #include "core/version.hpp"
+#include "eval/metrics.hpp"
 
 namespace slambox {
 
@@ -43,26 +47,69 @@ std::vector<std::string> SweptAndSetKeys(const SweepSpec& spec) {
   return keys;
 }
 
+// check: {METRIC: {relative: R, absolute: A}} -> spec.check_tolerances (a `sweep --check` metric only).
+void ParseCheckTolerances(const YAML::Node& check, const std::string& path, SweepSpec& spec) {
+  const std::string example = "write check: {ate_rmse_m: {relative: 0.1, absolute: 0.001}}";
+  if (!check.IsMap()) throw InputError(path, Line(check), "'check' must map metrics to tolerances", example);
+  for (const auto& kv : check) {
+    const std::string metric = kv.first.Scalar();
+    const MetricDescriptor* d = FindMetric(metric);
+    if (!d || !d->checked)
+      throw InputError(path, Line(kv.first), "'" + metric + "' is not a metric that sweep --check compares",
+                       "use a checked metric of eval/README.md (ate_*, rpe_*, landmark_rmse_m, anees, relation_*)");
+    if (!kv.second.IsMap()) throw InputError(path, Line(kv.second), "the tolerance of '" + metric + "' must be a map", example);
+    std::pair<double, double> tol{0.1, 0.0};
+    for (const auto& t : kv.second) {
+      const std::string key = t.first.Scalar();
+      double* field = key == "relative" ? &tol.first : key == "absolute" ? &tol.second : nullptr;
+      if (!field) throw InputError(path, Line(t.first), "unknown tolerance key '" + key + "'", "use relative, absolute");
+      try {
+        *field = t.second.as<double>();
+      } catch (const YAML::BadConversion&) {
+        *field = -1;
+      }
+      if (!(*field >= 0 && *field < 1e6))
+        throw InputError(path, Line(t.second), key + " tolerance of '" + metric + "' must be a number >= 0", example);
+    }
+    spec.check_tolerances.emplace_back(metric, tol);
+  }
+}
+
 }  // namespace
 
 SweepSpec LoadSweepSpec(const std::string& path) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec || !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, 0, "cannot open the sweep file", "check the path");
+  if (bytes > limits::kMaxYamlFileBytes)
+    throw InputError(path, 0,
+                     "the sweep file has " + std::to_string(bytes) + " bytes, over the limit of " +
+                         std::to_string(limits::kMaxYamlFileBytes),
+                     "give a sweep YAML file (scenarios, algorithms, seeds, grid)");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw InputError(path, 0, "cannot read the sweep file", "check its permissions");
+  return ParseSweepSpec(text.str(), path);
+}
+
+SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path, 0, "cannot open the sweep file", "check the path");
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(path, e.mark.line + 1, "not valid YAML: " + e.msg, "fix the YAML syntax");
   }
   if (!root.IsMap()) throw InputError(path, 1, "a sweep file is a YAML map", "see DESIGN.md: scenarios, algorithms, seeds, grid");
   SweepSpec spec;
   spec.source = path;
-  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations"};
+  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations", "plugins", "check"};
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (!known.count(key))
       throw InputError(path, Line(kv.first), "unknown key '" + key + "'",
-                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations");
+                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations, plugins, check");
   }
   for (const char* required : {"scenarios", "algorithms", "seeds"})
     if (!root[required]) throw InputError(path, 1, std::string("missing '") + required + "'", std::string("add ") + required + ":");
@@ -123,6 +170,7 @@ SweepSpec LoadSweepSpec(const std::string& path) {
       spec.relations.emplace_back(entry, kv.second.Scalar());
     }
   }
+  if (const YAML::Node check = root["check"]) ParseCheckTolerances(check, path, spec);
   // A stream is already simulated: scenario overrides cannot apply to it.
   for (const auto& scenario : spec.scenarios) {
     if (!std::filesystem::is_regular_file(scenario) || !IsStreamFile(scenario)) continue;
@@ -130,6 +178,18 @@ SweepSpec LoadSweepSpec(const std::string& path) {
       if (key.rfind("algo.", 0) != 0)
         throw InputError(path, 1, "'" + key + "' is a scenario key and '" + scenario + "' is a stream file",
                          "set only algo.NAME.FIELD keys in a sweep over streams, or list scenarios instead");
+  }
+  double runs = static_cast<double>(spec.scenarios.size()) * static_cast<double>(spec.seeds.size());
+  for (const auto& [key, values] : spec.grid) runs *= static_cast<double>(values.size());
+  if (runs > static_cast<double>(limits::kMaxSweepRuns))
+    throw InputError(path, 0,
+                     "the sweep asks for " + std::to_string(runs) + " runs (scenarios x grid points x seeds), over the limit of " +
+                         std::to_string(limits::kMaxSweepRuns),
+                     "split it into several sweeps, or use fewer grid values or seeds");
+  if (const YAML::Node plugins = root["plugins"]) {
+    const std::filesystem::path base = std::filesystem::path(path).parent_path();
+    for (const auto& p : StringList(plugins, path, "plugins"))
+      spec.plugins.push_back(std::filesystem::path(p).is_absolute() ? p : (base / p).lexically_normal().string());
   }
   return spec;
 }

@@ -7,6 +7,7 @@
 //     sensors.lidar.sigma_range_m: [0.01, 0.05]
 //   set: {robot.laps: 1}               # optional: fixed overrides for every run
 //   timeout_s: 600                     # optional: a run taking longer is killed, recorded failed
+//   plugins: [build/libmy_plugin.so]   # optional: module plugins (paths relative to this file)
 //   relations: {intel.stream: intel.relations}  # optional: Kümmerle relations per scenario entry
 // A run = one scenario x one grid point x one seed; it simulates its stream once and
 // replays it to every algorithm. A `scenarios` entry may be a stream file (e.g. a
@@ -27,7 +28,10 @@ struct SweepSpec {
   std::vector<std::pair<std::string, std::vector<std::string>>> grid;  ///< key -> values (YAML text), file order
   std::vector<std::pair<std::string, std::string>> fixed;              ///< `set:` key -> value
   double timeout_s = 1800.0;
+  std::vector<std::string> plugins;  ///< module plugin files, resolved against the sweep file's folder
   std::vector<std::pair<std::string, std::string>> relations;  ///< scenario entry -> relations file
+  /// `check:` metric -> (relative, absolute) tolerance for `sweep --check` (else the flags').
+  std::vector<std::pair<std::string, std::pair<double, double>>> check_tolerances;
 };
 
 struct SweepRun {
@@ -43,6 +47,8 @@ struct SweepRun {
 
 /// Parses and validates; throws InputError with file, line and fix.
 SweepSpec LoadSweepSpec(const std::string& path);
+/// LoadSweepSpec of the file's text; `path` is used in error messages.
+SweepSpec ParseSweepSpec(const std::string& text, const std::string& path);
 /// Scenario-major, then grid points (last key varies fastest), then seeds.
 std::vector<SweepRun> ExpandSweep(const SweepSpec& spec);
 /// Stable run id (FNV-1a 64 of the canonical run description and slambox version).

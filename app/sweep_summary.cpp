@@ -155,25 +155,4 @@ std::string SummaryMarkdown(const ResultsTable& table, const SweepSpec& spec, st
   return md.str();
 }
 
-std::vector<Regression> CheckBaseline(const std::string& results_csv, const std::string& baseline_csv,
-                                      double tolerance, double tolerance_abs) {
-  const CellValues current = CellMetricValues(ReadResultsCsv(results_csv));
-  const CellValues baseline = CellMetricValues(ReadResultsCsv(baseline_csv));
-  std::vector<Regression> out;
-  for (const auto& [cell, metrics] : baseline) {
-    for (const auto& [metric, base_values] : metrics) {
-      if (!FindMetric(metric)->checked || base_values.empty()) continue;
-      const double base = Summarize(base_values).mean;
-      const auto c = current.find(cell);
-      if (c == current.end() || !c->second.count(metric) || c->second.at(metric).empty()) {
-        out.push_back({cell.Text(), metric, base, NAN});
-        continue;
-      }
-      const double now = Summarize(c->second.at(metric)).mean;
-      if (now > base * (1.0 + tolerance) + tolerance_abs) out.push_back({cell.Text(), metric, base, now});
-    }
-  }
-  return out;
-}
-
 }  // namespace slambox

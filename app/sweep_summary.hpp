@@ -2,8 +2,8 @@
 // Sweep results: DIR/results.csv (one row per run and algorithm, deterministic metrics
 // only, so a resumed or parallel sweep gives a byte-identical file), DIR/timing.csv
 // (run times, which vary between machines and runs), DIR/summary.md (per cell: mean,
-// std, median and 95% t-interval over seeds; the best mean per scenario in bold) and the
-// regression check against a baseline results.csv. The table itself is eval/results_table.
+// std, median and 95% t-interval over seeds; the best mean per scenario in bold). The table
+// itself is eval/results_table; the regression check is app/sweep_check.
 #include <string>
 #include <vector>
 
@@ -20,16 +20,5 @@ void WriteSweepSummary(const std::string& out_dir, const SweepSpec& spec, const 
 /// summary.md's text for `table` (rows of `spec`'s runs; `missing` runs have no result).
 std::string SummaryMarkdown(const ResultsTable& table, const SweepSpec& spec, std::size_t runs, int missing);
 
-struct Regression {
-  std::string cell;    ///< CellKey::Text(): "scenario | key=value ... | algorithm"
-  std::string metric;
-  double baseline_mean = 0, current_mean = 0;
-};
-/// Cells whose mean of a checked metric (MetricDescriptor::checked: ate_*, rpe_trans_*,
-/// rpe_rot_*, landmark_rmse_m) got worse than baseline_mean * (1 + tolerance) +
-/// tolerance_abs, plus cells the baseline had but the current results lack (reported
-/// with current_mean = NaN).
-std::vector<Regression> CheckBaseline(const std::string& results_csv, const std::string& baseline_csv,
-                                      double tolerance, double tolerance_abs);
 
 }  // namespace slambox

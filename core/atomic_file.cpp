@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -13,13 +15,22 @@ void WriteFileAtomic(const std::string& path, const std::function<void(std::ostr
   const fs::path target(path);
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
   const fs::path tmp = target.string() + ".tmp." + std::to_string(::getpid());
+  // errno of the failed write (ENOSPC on a full disk) names the cause; the target is untouched.
+  auto failed = [&](const char* what) {
+    const int err = errno;
+    return std::runtime_error(std::string(what) + " " + target.string() + ": " +
+                              (err ? std::strerror(err) : "I/O error") + " (the file was not changed)");
+  };
   try {
     {
+      errno = 0;
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      if (!out) throw std::runtime_error("cannot open " + tmp.string() + " for writing");
+      if (!out) throw failed("cannot create a temporary file to write");
       write(out);
       out.flush();
-      if (!out) throw std::runtime_error("write failed: " + tmp.string());
+      if (!out) throw failed("cannot write");
+      out.close();
+      if (!out) throw failed("cannot write");
     }
     fs::rename(tmp, target);
   } catch (...) {

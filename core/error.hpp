@@ -27,4 +27,11 @@ class InputError : public std::runtime_error {
   int line_;
 };
 
+/// A module whose output is unusable (e.g. a non-finite pose from an `exec` child): the
+/// run records `status: diverged` with this reason instead of `failed`.
+class ModuleDiverged : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace slambox

@@ -44,7 +44,8 @@ void ParamBinder::BindEnum(const std::string& name, EnumField field, const std::
 }
 
 void ParamBinder::Apply(const ParamOverrides& overrides, const std::string& module) const {
-  for (const auto& [key, text] : overrides) {
+  for (const auto& entry : overrides) {
+    const std::string &key = entry.first, &text = entry.second;  // (clang 14 cannot capture bindings)
     auto it = std::find_if(infos_.begin(), infos_.end(), [&](const ParamInfo& p) { return p.name == key; });
     const std::string where = Where(module, key);
     if (it == infos_.end()) {

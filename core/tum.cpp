@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/limits.hpp"
 
 namespace slambox {
 
@@ -23,13 +24,21 @@ void WriteTum(const std::string& path, const std::vector<StampedPose>& poses) {
 }
 
 std::vector<StampedPose> ReadTum(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open the trajectory file", "check the path");
+  std::ostringstream all;
+  all << in.rdbuf();
+  return ParseTum(all.str(), path);
+}
+
+std::vector<StampedPose> ParseTum(const std::string& content, const std::string& path) {
   std::vector<StampedPose> poses;
+  std::istringstream in(content);
   std::string text;
   int line_no = 0;
   while (std::getline(in, text)) {
     ++line_no;
+    limits::CheckLineLength(path, line_no, text.size());
     const auto first = text.find_first_not_of(" \t\r");
     if (first == std::string::npos || text[first] == '#') continue;
     std::istringstream s(text);

@@ -12,5 +12,7 @@ void WriteTum(const std::string& path, const std::vector<StampedPose>& poses);  
 /// Throws InputError naming the file and line for a malformed line, a non-finite value or
 /// timestamps that are not increasing. Lines starting with '#' and blank lines are skipped.
 std::vector<StampedPose> ReadTum(const std::string& path);
+/// ReadTum of the file's text; `path` is used in error messages.
+std::vector<StampedPose> ParseTum(const std::string& text, const std::string& path);
 
 }  // namespace slambox

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "datasets/compressed_file.hpp"
 
 namespace slambox {
@@ -64,7 +65,9 @@ class Tokens {
   /// The ipc timestamp: third token from the end (ts host logger_ts).
   double Timestamp() const {
     if (tokens_.size() < 4) Fail("the line ends before its timestamp (ts host logger_ts)");
-    return Number(tokens_.size() - 3, "the timestamp");
+    const double ts = Number(tokens_.size() - 3, "the timestamp");
+    if (std::abs(ts) > limits::kMaxTimestampS) Fail("the timestamp " + tokens_[tokens_.size() - 3] + " is out of range (|t| <= 1e10 s)");
+    return ts;
   }
   [[noreturn]] void Fail(const std::string& problem) const {
     throw InputError(file_, line_, tokens_.empty() ? problem : tokens_[0] + ": " + problem,
@@ -78,7 +81,13 @@ class Tokens {
 };
 
 SE2 PoseAt(const Tokens& t, size_t i, const char* what) {
-  return SE2(t.Number(i, what), t.Number(i + 1, what), t.Number(i + 2, what));
+  const double x = t.Number(i, what), y = t.Number(i + 1, what), theta = t.Number(i + 2, what);
+  // Bounded, so that increments between poses stay finite (core/limits.hpp).
+  if (std::abs(x) > limits::kMaxCoordinateM || std::abs(y) > limits::kMaxCoordinateM ||
+      std::abs(theta) > limits::kMaxAngleRad)
+    t.Fail(std::string(what) + " (" + t.word(i) + ", " + t.word(i + 1) + ", " + t.word(i + 2) +
+           ") is out of range (|x|, |y| <= 1e5 m, |theta| <= 1e4 rad)");
+  return SE2(x, y, theta);
 }
 
 // n beams over the field of view: odd n puts the ends at +-fov/2, even n steps fov/n.
@@ -103,6 +112,7 @@ ParsedLog ParseLines(const std::string& text, const std::string& name, const Car
     const std::string_view line(text.data() + pos, end - pos);
     pos = end + 1;
     ++line_number;
+    limits::CheckLineLength(name, line_number, line.size());
     if (line.empty() || line[0] == '#') continue;
     const Tokens t(line, name, line_number);
     if (t.size() == 0) continue;
@@ -135,6 +145,9 @@ ParsedLog ParseLines(const std::string& text, const std::string& name, const Car
       s.line = line_number;
       s.angle_min_rad = t.Number(2, "start_angle");
       s.angle_increment_rad = t.Number(4, "the angular resolution");
+      // Bounded, so that the header's field of view (n x resolution) stays finite (found by fuzz_carmen).
+      if (std::abs(s.angle_min_rad) > limits::kMaxAngleRad || std::abs(s.angle_increment_rad) > limits::kMaxAngleRad)
+        t.Fail("start_angle " + t.word(2) + " or angular resolution " + t.word(4) + " is out of range (|angle| <= 1e4 rad)");
       s.range_max_m = t.Number(5, "max_range");
       for (int i = 0; i < n; ++i) s.ranges_m.push_back(t.Number(9 + i, "a range reading"));
       s.laser_pose = PoseAt(t, 10 + n + m, "the laser pose");

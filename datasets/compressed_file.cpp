@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 
 namespace slambox {
 
@@ -16,13 +17,26 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+[[noreturn]] void TooBig(const std::string& path) {
+  throw InputError(path, 0,
+                   "decompresses to more than " + std::to_string(limits::kMaxDecompressedBytes) +
+                       " bytes (the limit; public CARMEN logs are tens of MB)",
+                   "check that this is the log you meant; split it if it really is that large");
+}
+
 std::string ReadGzip(const std::string& path) {
   gzFile f = gzopen(path.c_str(), "rb");
   if (!f) throw InputError(path, 0, "cannot open the file", "check the path and its permissions");
   std::string out;
   char buffer[1 << 16];
   int n = 0;
-  while ((n = gzread(f, buffer, sizeof buffer)) > 0) out.append(buffer, static_cast<size_t>(n));
+  while ((n = gzread(f, buffer, sizeof buffer)) > 0) {
+    out.append(buffer, static_cast<size_t>(n));
+    if (out.size() > limits::kMaxDecompressedBytes) {
+      gzclose(f);
+      TooBig(path);
+    }
+  }
   int code = Z_OK;
   const std::string message = n < 0 ? gzerror(f, &code) : "";
   gzclose(f);
@@ -56,6 +70,10 @@ std::string ReadBzip2(const std::string& path) {
       z.avail_out = sizeof buffer;
       code = BZ2_bzDecompress(&z);
       out.append(buffer, sizeof buffer - z.avail_out);
+      if (out.size() > limits::kMaxDecompressedBytes) {
+        BZ2_bzDecompressEnd(&z);
+        TooBig(path);
+      }
       if (code == BZ_OK && z.avail_in == 0 && z.avail_out > 0) break;  // input ended inside a stream
     }
     consumed = packed.size() - z.avail_in;

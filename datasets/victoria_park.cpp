@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "datasets/compressed_file.hpp"
 
 namespace slambox {
@@ -37,6 +38,7 @@ Stream ParseVictoriaPark(const std::string& text, const std::string& name, const
   int line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
+    limits::CheckLineLength(name, line_number, line.size());
     if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
     std::istringstream fields(line);
     std::vector<double> v;

@@ -95,6 +95,24 @@ std::vector<std::uint8_t> RasterizeWorld(const World& world, const OccupancyGrid
   return mask;
 }
 
+OccupancyGrid TrueOccupancyGrid(const World& world, double resolution_m, double margin_m) {
+  OccupancyGrid g;
+  g.resolution_m = resolution_m;
+  if (world.wall_segments.empty() && world.wall_circles.empty()) return g;
+  World walls;  // landmarks and mover paths do not widen the lattice
+  walls.wall_segments = world.wall_segments;
+  walls.wall_circles = world.wall_circles;
+  const Bounds b = WorldBounds(walls);
+  const Eigen::Vector2d margin(margin_m, margin_m);
+  g.origin_m = b.min - margin;
+  g.width = static_cast<int>(std::ceil((b.max.x() - b.min.x() + 2 * margin_m) / resolution_m)) + 1;
+  g.height = static_cast<int>(std::ceil((b.max.y() - b.min.y() + 2 * margin_m) / resolution_m)) + 1;
+  const std::vector<std::uint8_t> mask = RasterizeWorld(world, g);
+  g.cells.resize(mask.size());
+  for (size_t i = 0; i < mask.size(); ++i) g.cells[i] = mask[i] ? 100 : 0;
+  return g;
+}
+
 std::vector<double> DistanceTransform(const std::vector<std::uint8_t>& mask, int w, int h) {
   const double inf = std::numeric_limits<double>::infinity();
   if (std::none_of(mask.begin(), mask.end(), [](std::uint8_t m) { return m != 0; }))

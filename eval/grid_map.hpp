@@ -33,6 +33,11 @@ struct GridMapResult {
 /// 1 where the world's walls occupy a cell of the lattice of `grid` (its cells ignored).
 std::vector<std::uint8_t> RasterizeWorld(const World& world, const OccupancyGrid& grid);
 
+/// The world's walls as a grid on a lattice covering WorldBounds + `margin_m`: 100 where
+/// RasterizeWorld marks a cell, 0 (free) elsewhere; empty (0 x 0) for a world without walls.
+/// Written as maps/groundtruth.yaml beside the estimated maps.
+OccupancyGrid TrueOccupancyGrid(const World& world, double resolution_m = 0.05, double margin_m = 0.5);
+
 /// Exact Euclidean distance [cells] from every cell to the nearest cell with mask 1;
 /// +inf everywhere when the mask is empty.
 std::vector<double> DistanceTransform(const std::vector<std::uint8_t>& mask, int width, int height);

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "core/se2.hpp"
+#include "sim/grid_contours.hpp"
 #include "sim/scenario.hpp"
 
 namespace slambox {
@@ -23,6 +24,9 @@ std::vector<Eigen::Vector2d> BoxCorners(const Eigen::Vector2d& center, const Eig
 
 World MakeWorld(const Scenario& scenario) {
   World w;
+  // A map image's walls: the boundary loops of its occupied cells, exact (the cells'
+  // sides), so the LIDAR, Box2D, figures and map-based modules all see the grid.
+  for (const Contour& loop : OccupiedContours(scenario.occupancy_grid)) AddChain(loop, true, w);
   for (const WallSpec& wall : scenario.walls) {
     switch (wall.kind) {
       case WallSpec::Kind::kPolyline: AddChain(wall.points, false, w); break;

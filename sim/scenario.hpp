@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/estimate.hpp"
 #include "core/sensors.hpp"
 #include "core/world.hpp"
 
@@ -68,6 +69,11 @@ struct Scenario {
   std::string name;
   std::string description;
   double duration_s = 0.0;  ///< 0 = until the robot finishes its path
+  /// `world.occupancy_map`: a ROS map.yaml (path relative to the scenario file), resolved
+  /// to an absolute path; its occupied cells' boundaries become walls (sim/grid_contours).
+  std::string occupancy_map;
+  int occupancy_map_line = 0;
+  OccupancyGrid occupancy_grid;  ///< read from occupancy_map (0 x 0 = none)
   std::vector<WallSpec> walls;
   std::vector<LandmarkSpec> landmarks;
   std::vector<MoverSpec> movers;

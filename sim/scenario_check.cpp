@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "sim/grid_contours.hpp"
 #include "sim/scenario_yaml.hpp"
 
 namespace slambox::scenario_detail {
@@ -82,6 +83,14 @@ std::vector<Obstacle> StaticObstacles(const Scenario& s) {
     }
     out.push_back(o);
   }
+  if (s.occupancy_grid.width > 0) {  // the map image's walls, as MakeWorld builds them
+    Obstacle o;
+    o.what = "occupied cells of world.occupancy_map";
+    o.line = s.occupancy_map_line;
+    for (const Contour& loop : OccupiedContours(s.occupancy_grid))
+      for (std::size_t i = 0; i < loop.size(); ++i) o.edges.emplace_back(loop[i], loop[(i + 1) % loop.size()]);
+    out.push_back(o);
+  }
   for (const LandmarkSpec& l : s.landmarks) {
     Obstacle o;
     o.what = "landmark post " + std::to_string(l.id);
@@ -125,9 +134,20 @@ std::string Where(const Obstacle& o) {
   return "the " + o.what + (o.line > 0 ? " at line " + std::to_string(o.line) : std::string());
 }
 
+// Inside the map image's occupied region (its edges alone miss a point deep inside a wall).
+bool InOccupiedCell(const OccupancyGrid& g, const Vec& p) {
+  if (g.width <= 0) return false;
+  const int ix = static_cast<int>(std::floor((p.x() - g.origin_m.x()) / g.resolution_m));
+  const int iy = static_cast<int>(std::floor((p.y() - g.origin_m.y()) / g.resolution_m));
+  return ix >= 0 && iy >= 0 && ix < g.width && iy < g.height && g.cells[std::size_t(iy) * g.width + ix] > 50;
+}
+
 void CheckPose(const Scenario& s, const std::vector<Obstacle>& obstacles, const PoseSpec& pose, int line,
                const std::string& name, const std::string& key) {
   const Vec p(pose.x, pose.y);
+  if (InOccupiedCell(s.occupancy_grid, p))
+    throw InputError(s.source, line, name + " " + Point(p) + " is in an occupied cell of world.occupancy_map",
+                     "move " + key + " into the map's free space");
   for (const Obstacle& o : obstacles)
     if (Clearance(o, p, p, s.robot.radius_m) < 0.0)
       throw InputError(s.source, line,
@@ -147,6 +167,10 @@ void CheckScenarioGeometry(const Scenario& s) {
   const auto& path = s.robot.path;
   auto check_leg = [&](const Vec& a, std::size_t to) {
     const int line = to < s.robot.path_lines.size() ? s.robot.path_lines[to] : 0;
+    if (InOccupiedCell(s.occupancy_grid, path[to]))
+      throw InputError(s.source, line,
+                       "waypoint " + std::to_string(to) + " " + Point(path[to]) + " is in an occupied cell of world.occupancy_map",
+                       "move the waypoint into the map's free space");
     for (const Obstacle& o : obstacles)
       if (Clearance(o, a, path[to], s.robot.radius_m) < 0.0)
         throw InputError(s.source, line,

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "sim/scenario_yaml.hpp"
 
 namespace slambox {
@@ -21,6 +22,12 @@ std::string BuiltinNames() {
 std::pair<std::string, std::string> ReadScenarioText(const std::string& name_or_path) {
   std::error_code ec;
   if (std::filesystem::is_regular_file(name_or_path, ec)) {
+    const auto bytes = std::filesystem::file_size(name_or_path, ec);
+    if (!ec && bytes > limits::kMaxYamlFileBytes)
+      throw InputError(name_or_path, 0,
+                       "the scenario file has " + std::to_string(bytes) + " bytes, over the limit of " +
+                           std::to_string(limits::kMaxYamlFileBytes),
+                       "give a scenario YAML file (the built-in ones are a few kB)");
     std::ifstream in(name_or_path, std::ios::binary);
     std::ostringstream text;
     text << in.rdbuf();
@@ -54,6 +61,11 @@ Scenario LoadScenario(const std::string& name_or_path, const std::vector<std::st
 }
 
 Scenario LoadScenarioText(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
+  if (text.size() > limits::kMaxYamlFileBytes)
+    throw InputError(file, 0,
+                     "the scenario text has " + std::to_string(text.size()) + " bytes, over the limit of " +
+                         std::to_string(limits::kMaxYamlFileBytes),
+                     "give a scenario YAML file (the built-in ones are a few kB)");
   YamlSource src{file, {}};
   YAML::Node root;
   try {
@@ -64,6 +76,7 @@ Scenario LoadScenarioText(const std::string& text, const std::string& file, cons
   }
   ApplyOverrides(root, overrides, src);
   Scenario s = ParseScenario(root, src);
+  CheckScenarioSize(s);
   CheckScenarioGeometry(s);
   return s;
 }

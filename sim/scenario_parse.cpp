@@ -1,6 +1,11 @@
 // YAML tree -> Scenario: every key checked against the schema, every value typed and
 // range-checked (DESIGN.md, "Scenario file (YAML, version 1)").
+#include <filesystem>
 #include <set>
+
+#include "core/error.hpp"
+#include "core/limits.hpp"
+#include "core/ros_map.hpp"
 
 #include "sim/scenario_yaml.hpp"
 
@@ -22,14 +27,35 @@ YAML::Node Sequence(const YamlSource& src, const YAML::Node& map, const std::str
   const YAML::Node v = map[key];
   if (!v.IsDefined() || v.IsNull()) return YAML::Node(YAML::NodeType::Sequence);
   if (!v.IsSequence()) Fail(src, v, key + " must be a list", "write each item on a line starting with '- '");
+  CheckListSize(src, v, key);
   return v;
+}
+
+// The map.yaml path is relative to the scenario file (absolute paths as given). Built-in
+// scenarios are embedded text: they cannot name a map image yet.
+void ParseOccupancyMap(const YamlSource& src, const YAML::Node& node, Scenario& s) {
+  const std::string value = ReadString(src, node, "world.occupancy_map");
+  std::filesystem::path path(value);
+  if (path.is_relative() && src.file.rfind("builtin:", 0) == 0)
+    Fail(src, node, "a built-in scenario cannot name a map file (it is not embedded)", "give an absolute path");
+  if (path.is_relative()) path = std::filesystem::path(src.file).parent_path() / path;
+  s.occupancy_map = std::filesystem::absolute(path).lexically_normal().string();
+  s.occupancy_map_line = LineOf(src, node);
+  try {
+    s.occupancy_grid = ReadRosMap(s.occupancy_map);
+  } catch (const InputError& e) {
+    Fail(src, node, std::string("world.occupancy_map: ") + e.what(), "give a ROS map.yaml (image, resolution, origin, ...)");
+  }
+  if (s.occupancy_grid.resolution_m < 0.01)
+    Fail(src, node, "world.occupancy_map: resolution below 0.01 m", "resample the map to cells of at least 1 cm");
 }
 
 PoseSpec ParsePose(const YamlSource& src, const YAML::Node& node, const std::string& path) {
   CheckMap(src, node, path);
   PoseSpec p;
-  p.x = GetDouble(src, node, path, "x", p.x, {});
-  p.y = GetDouble(src, node, path, "y", p.y, {});
+  const Range coordinate = Between(-limits::kMaxCoordinateM, limits::kMaxCoordinateM);
+  p.x = GetDouble(src, node, path, "x", p.x, coordinate);
+  p.y = GetDouble(src, node, path, "y", p.y, coordinate);
   p.theta_deg = GetDouble(src, node, path, "theta_deg", p.theta_deg, {});
   return p;
 }
@@ -158,11 +184,12 @@ Scenario ParseScenario(const YAML::Node& root, const YamlSource& src) {
     Fail(src, version, "unsupported scenario version " + std::to_string(s.version), "this slambox reads version: 1");
   if (root["name"].IsDefined()) s.name = ReadString(src, root["name"], "name");
   if (root["description"].IsDefined()) s.description = ReadString(src, root["description"], "description");
-  s.duration_s = GetDouble(src, root, "", "duration_s", s.duration_s, AtLeast(0.0));
+  s.duration_s = GetDouble(src, root, "", "duration_s", s.duration_s, Between(0.0, limits::kMaxDurationS));
 
   if (root["world"].IsDefined() && !root["world"].IsNull()) {
     const YAML::Node world = root["world"];
     CheckMap(src, world, "world");
+    if (world["occupancy_map"].IsDefined()) ParseOccupancyMap(src, world["occupancy_map"], s);
     const YAML::Node walls = Sequence(src, world, "walls");
     for (std::size_t i = 0; i < walls.size(); ++i) s.walls.push_back(ParseWall(src, walls[i], i));
     s.landmarks = ParseLandmarks(src, Sequence(src, world, "landmarks"));

@@ -1,5 +1,6 @@
 // `sensors:` block -> SensorSuite. A missing block = the sensor is absent; a present
 // block takes the defaults of core/sensors.hpp for every key it does not give.
+#include "core/limits.hpp"
 #include "sim/scenario_yaml.hpp"
 
 namespace slambox::scenario_detail {
@@ -28,7 +29,7 @@ LidarConfig ParseLidar(const YamlSource& src, const YAML::Node& n) {
   CheckMap(src, n, p);
   LidarConfig c;
   c.rate_hz = GetDouble(src, n, p, "rate_hz", c.rate_hz, Above(0.0));
-  c.beams = GetInt(src, n, p, "beams", c.beams, AtLeast(1));
+  c.beams = GetInt(src, n, p, "beams", c.beams, Between(1, limits::kMaxLidarBeams));
   c.fov_deg = GetDouble(src, n, p, "fov_deg", c.fov_deg, kFov);
   c.range_min_m = GetDouble(src, n, p, "range_min_m", c.range_min_m, AtLeast(0.0));
   c.range_max_m = GetDouble(src, n, p, "range_max_m", c.range_max_m, Above(c.range_min_m));
@@ -49,7 +50,7 @@ LandmarkSensorConfig ParseLandmarkSensor(const YamlSource& src, const YAML::Node
   c.sigma_bearing_deg = GetDouble(src, n, p, "sigma_bearing_deg", c.sigma_bearing_deg, AtLeast(0.0));
   c.known_ids = GetBool(src, n, p, "known_ids", c.known_ids);
   c.detection_prob = GetDouble(src, n, p, "detection_prob", c.detection_prob, kProbability);
-  c.clutter_per_scan = GetDouble(src, n, p, "clutter_per_scan", c.clutter_per_scan, AtLeast(0.0));
+  c.clutter_per_scan = GetDouble(src, n, p, "clutter_per_scan", c.clutter_per_scan, Between(0.0, limits::kMaxClutterPerScan));
   return c;
 }
 

@@ -137,6 +137,7 @@ std::string ScenarioToYaml(const Scenario& s) {
   KV{out}("duration_s", s.duration_s);
 
   out << YAML::Key << "world" << YAML::Value << YAML::BeginMap;
+  if (!s.occupancy_map.empty()) out << YAML::Key << "occupancy_map" << YAML::Value << s.occupancy_map;
   out << YAML::Key << "walls" << YAML::Value << FlowIfEmpty(s.walls) << YAML::BeginSeq;
   for (const auto& w : s.walls) EmitWall(out, w);
   out << YAML::EndSeq << YAML::Key << "landmarks" << YAML::Value << FlowIfEmpty(s.landmarks) << YAML::BeginSeq;

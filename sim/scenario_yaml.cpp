@@ -7,12 +7,14 @@
 #include "core/error.hpp"
 #include "sim/scenario_yaml.hpp"
 
+#include "core/limits.hpp"
+
 namespace slambox::scenario_detail {
 
 const std::vector<std::string>* ScenarioKeysAt(const std::string& path) {
   static const std::map<std::string, std::vector<std::string>> kKeys = {
       {"", {"version", "name", "description", "duration_s", "world", "robot", "sensors"}},
-      {"world", {"walls", "landmarks", "movers"}},
+      {"world", {"occupancy_map", "walls", "landmarks", "movers"}},
       {"world.walls.#", {"polyline", "polygon", "box", "circle"}},
       {"world.walls.#.box", {"center", "size", "angle_deg"}},
       {"world.walls.#.circle", {"center", "radius_m"}},
@@ -71,6 +73,13 @@ void ExpectScalar(const YamlSource& src, const YAML::Node& value, const std::str
          std::string("write ") + key + ": <" + what + ">");
 }
 }  // namespace
+
+void CheckListSize(const YamlSource& src, const YAML::Node& list, const std::string& key) {
+  if (list.size() > limits::kMaxListItems)
+    Fail(src, list, key + " has " + std::to_string(list.size()) + " items, over the limit of " +
+                        std::to_string(limits::kMaxListItems),
+         "split the world or simplify it (fewer points, walls, posts or waypoints)");
+}
 
 int LineOf(const YamlSource& src, const YAML::Node& node) {
   if (!node.IsDefined() || OverrideOf(src, node)) return 0;
@@ -147,7 +156,11 @@ std::string ReadString(const YamlSource& src, const YAML::Node& value, const std
 Eigen::Vector2d ReadPoint(const YamlSource& src, const YAML::Node& value, const std::string& key) {
   if (!value.IsSequence() || value.size() != 2)
     Fail(src, value, key + " must be a point [x, y] in metres", "write it as [x, y], e.g. [1.5, 2]");
-  return {ReadDouble(src, value[0], key + "[0]", {}), ReadDouble(src, value[1], key + "[1]", {})};
+  if (++src.points_read > limits::kMaxScenarioPoints)
+    Fail(src, value, "more than " + std::to_string(limits::kMaxScenarioPoints) + " points in the scenario (at " + key + ")",
+         "draw the world with fewer points (YAML aliases count each time they are used)");
+  const Range coordinate = Between(-limits::kMaxCoordinateM, limits::kMaxCoordinateM);
+  return {ReadDouble(src, value[0], key + "[0]", coordinate), ReadDouble(src, value[1], key + "[1]", coordinate)};
 }
 
 std::vector<Eigen::Vector2d> ReadPoints(const YamlSource& src, const YAML::Node& value, const std::string& key,
@@ -157,6 +170,7 @@ std::vector<Eigen::Vector2d> ReadPoints(const YamlSource& src, const YAML::Node&
          key + " must be a list of " + (min_count == 1 ? std::string("one or more points")
                                                        : "at least " + std::to_string(min_count) + " points"),
          "write it as [[x, y], [x, y], ...]");
+  CheckListSize(src, value, key);
   std::vector<Eigen::Vector2d> points;
   for (std::size_t i = 0; i < value.size(); ++i)
     points.push_back(ReadPoint(src, value[i], key + "[" + std::to_string(i) + "]"));

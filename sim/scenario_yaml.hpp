@@ -20,6 +20,8 @@ namespace slambox::scenario_detail {
 struct YamlSource {
   std::string file;
   std::vector<std::pair<YAML::Node, std::string>> overrides;
+  /// Points read so far (YAML aliases can repeat one list many times: the total is bounded).
+  mutable std::size_t points_read = 0;
 };
 
 /// Keys allowed in the mapping at `path` ("" = top level, "sensors.lidar",
@@ -41,6 +43,8 @@ int ReadInt(const YamlSource& src, const YAML::Node& value, const std::string& k
 bool ReadBool(const YamlSource& src, const YAML::Node& value, const std::string& key);
 std::string ReadString(const YamlSource& src, const YAML::Node& value, const std::string& key);
 Eigen::Vector2d ReadPoint(const YamlSource& src, const YAML::Node& value, const std::string& key);
+/// `list` has at most limits::kMaxListItems items.
+void CheckListSize(const YamlSource& src, const YAML::Node& list, const std::string& key);
 std::vector<Eigen::Vector2d> ReadPoints(const YamlSource& src, const YAML::Node& value,
                                         const std::string& key, std::size_t min_count);
 
@@ -63,6 +67,9 @@ void ApplyOverrides(YAML::Node& root, const std::vector<std::string>& overrides,
 /// Geometry: robot start clear of walls and posts, every waypoint segment clear, movers'
 /// paths clear of static walls. Throws InputError naming the offending line.
 void CheckScenarioGeometry(const Scenario& scenario);
+/// The limits of core/limits.hpp that need the whole scenario: the stream's estimated
+/// memory and the geometry check's work (sim/scenario_limits.hpp). Throws InputError.
+void CheckScenarioSize(const Scenario& scenario);
 
 /// Built-in scenario texts embedded at build time: {name, yaml}.
 struct EmbeddedScenario {

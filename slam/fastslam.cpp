@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "core/odometry_model.hpp"
 #include "slam/particle_weights.hpp"
 #include "slam/range_bearing.hpp"
@@ -41,7 +42,9 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
   auto fail = [&](const std::string& field, const std::string& problem, const std::string& fix) {
     throw InputError(where + "." + field, 0, problem, fix);
   };
-  if (c.particles < 1) fail("particles", "needs at least one particle", "set particles >= 1 (e.g. 100)");
+  if (c.particles < 1 || c.particles > limits::kMaxParticles)
+    fail("particles", "needs 1 .. " + std::to_string(limits::kMaxParticles) + " particles, got " + std::to_string(c.particles),
+         "set particles to e.g. 100");
   if (!(c.new_landmark_gate_chi2 > 0)) fail("new_landmark_gate_chi2", "must be positive", "e.g. 25");
   if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
@@ -164,25 +167,36 @@ void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
   }
 }
 
-// Weighted mean (circular for the heading) and covariance of the cloud; FastSLAM 2.0 adds
-// the mean of the particles' own prior covariances (law of total covariance).
+namespace {
+
+// Weighted mean of the particles' poses (circular for the heading) and their weighted
+// scatter about it; `pose(i)` is particle i's pose.
+template <class PoseOf>
+PoseEstimate WeightedPoseMean(double t_s, const std::vector<double>& w, PoseOf pose) {
+  double x = 0, y = 0, s = 0, c = 0;
+  for (size_t i = 0; i < w.size(); ++i) {
+    const SE2& q = pose(i);
+    x += w[i] * q.x, y += w[i] * q.y, s += w[i] * std::sin(q.theta), c += w[i] * std::cos(q.theta);
+  }
+  PoseEstimate e{t_s, SE2(x, y, std::atan2(s, c)), Eigen::Matrix3d::Zero(), true};
+  for (size_t i = 0; i < w.size(); ++i) {
+    const SE2& q = pose(i);
+    const Eigen::Vector3d d(q.x - x, q.y - y, NormalizeAngle(q.theta - e.pose.theta));
+    e.covariance += w[i] * d * d.transpose();
+  }
+  return e;
+}
+
+}  // namespace
+
+// The cloud's mean and covariance; FastSLAM 2.0 adds the mean of the particles' own prior
+// covariances (law of total covariance).
 void FastSlam::RecordCloud(double t_s) {
   std::vector<double> log_w;
   for (const FastSlamParticle& p : particles_) log_w.push_back(p.log_weight);
   const std::vector<double> w = NormalizeLogWeights(log_w);
-  double x = 0, y = 0, s = 0, c = 0;
-  for (size_t i = 0; i < w.size(); ++i) {
-    x += w[i] * particles_[i].pose.x;
-    y += w[i] * particles_[i].pose.y;
-    s += w[i] * std::sin(particles_[i].pose.theta);
-    c += w[i] * std::cos(particles_[i].pose.theta);
-  }
-  PoseEstimate e{t_s, SE2(x, y, std::atan2(s, c)), Eigen::Matrix3d::Zero(), true};
-  for (size_t i = 0; i < w.size(); ++i) {
-    const SE2& q = particles_[i].pose;
-    const Eigen::Vector3d d(q.x - x, q.y - y, NormalizeAngle(q.theta - e.pose.theta));
-    e.covariance += w[i] * (d * d.transpose() + particles_[i].pose_covariance);
-  }
+  PoseEstimate e = WeightedPoseMean(t_s, w, [&](size_t i) -> const SE2& { return particles_[i].pose; });
+  for (size_t i = 0; i < w.size(); ++i) e.covariance += w[i] * particles_[i].pose_covariance;
   if (!cloud_.empty() && cloud_.back().t_s == t_s) cloud_.back() = e;
   else cloud_.push_back(e);
 }
@@ -211,20 +225,8 @@ std::vector<PoseEstimate> FastSlam::PathMean() const {
   std::vector<std::vector<const PathNode*>> paths;
   for (const FastSlamParticle& p : particles_) paths.push_back(PathPoses(p.path));
   std::vector<PoseEstimate> out;
-  for (size_t k = 0; k < paths.front().size(); ++k) {
-    double x = 0, y = 0, s = 0, c = 0;
-    for (size_t i = 0; i < w.size(); ++i) {
-      const SE2& q = paths[i][k]->pose;
-      x += w[i] * q.x, y += w[i] * q.y, s += w[i] * std::sin(q.theta), c += w[i] * std::cos(q.theta);
-    }
-    PoseEstimate e{paths.front()[k]->t_s, SE2(x, y, std::atan2(s, c)), Eigen::Matrix3d::Zero(), true};
-    for (size_t i = 0; i < w.size(); ++i) {
-      const SE2& q = paths[i][k]->pose;
-      const Eigen::Vector3d d(q.x - x, q.y - y, NormalizeAngle(q.theta - e.pose.theta));
-      e.covariance += w[i] * d * d.transpose();
-    }
-    out.push_back(e);
-  }
+  for (size_t k = 0; k < paths.front().size(); ++k)
+    out.push_back(WeightedPoseMean(paths.front()[k]->t_s, w, [&](size_t i) -> const SE2& { return paths[i][k]->pose; }));
   return out;
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "slam/pose_graph_cost.hpp"
 
 namespace slambox {
@@ -55,6 +56,22 @@ class LineParser {
       throw InputError(file_, line_, tag_ + " value " + std::to_string(k) + " is " + s,
                        "replace it with a finite number");
     return v;
+  }
+  /// A position [m] within +-limits::kMaxCoordinateM.
+  double Coordinate(size_t k) const { return Bounded(k, limits::kMaxCoordinateM, "a position in metres"); }
+  /// An angle [rad] within +-limits::kMaxAngleRad.
+  double Angle(size_t k) const { return Bounded(k, limits::kMaxAngleRad, "an angle in radians"); }
+  double Bounded(size_t k, double bound, const char* what) const {
+    const double v = Number(k);
+    if (std::abs(v) > bound)
+      throw InputError(file_, line_, tag_ + " value " + std::to_string(k) + " " + tokens_[k] + " is out of range for " + what,
+                       "write a value within +-" + tokens_limit(bound) + " (core/limits.hpp)");
+    return v;
+  }
+  static std::string tokens_limit(double bound) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", bound);
+    return buf;
   }
   long long Id(size_t k) const {
     const std::string& s = tokens_[k];
@@ -120,6 +137,7 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
     ++line;
     size_t end = text.find('\n', pos);
     if (end == std::string::npos) end = text.size();
+    limits::CheckLineLength(name, line, end - pos);
     SplitWords(std::string_view(text).substr(pos, end - pos), &tokens);
     pos = end + 1;
     if (tokens.empty() || tokens[0][0] == '#') continue;
@@ -132,7 +150,7 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
         throw InputError(name, line, "vertex " + std::to_string(id) + " is defined twice (first on line " +
                                          std::to_string(vertices[id].line) + ")",
                          "give each vertex one line");
-      vertices[id] = {SE2(p.Number(2), p.Number(3), p.Number(4)), line};
+      vertices[id] = {SE2(p.Coordinate(2), p.Coordinate(3), p.Angle(4)), line};
     } else if (tag == "EDGE_SE2" || tag == "EDGE2" || tag == "ODOMETRY") {
       const EdgeFormat format = tag == "EDGE_SE2"              ? EdgeFormat::kG2o
                                 : (tag == "ODOMETRY" || isam) ? EdgeFormat::kIsam
@@ -148,7 +166,7 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
       if (e.from == e.to)
         throw InputError(name, line, "edge joins vertex " + std::to_string(e.from) + " to itself",
                          "remove the line or fix its ids");
-      e.edge.T_from_to = SE2(p.Number(3), p.Number(4), p.Number(5));
+      e.edge.T_from_to = SE2(p.Coordinate(3), p.Coordinate(4), p.Angle(5));
       e.edge.information = Information(p, format);
       Eigen::Matrix3d U;
       if (!SqrtInformation(e.edge.information, &U))

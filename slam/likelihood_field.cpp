@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/error.hpp"
+#include "core/limits.hpp"
 #include "slam/icp_target.hpp"
 
 namespace slambox {
@@ -49,8 +51,16 @@ DistanceGrid MakeDistanceGrid(const std::vector<Eigen::Vector2d>& occupied, doub
   Eigen::Vector2d lo = occupied.front(), hi = occupied.front();
   for (const auto& p : occupied) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   g.origin = lo.array() - margin_m;
-  g.width = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin_m) / resolution_m)) + 1;
-  g.height = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin_m) / resolution_m)) + 1;
+  const double width = std::ceil((hi.x() - lo.x() + 2 * margin_m) / resolution_m) + 1;
+  const double height = std::ceil((hi.y() - lo.y() + 2 * margin_m) / resolution_m) + 1;
+  if (!(width * height <= static_cast<double>(limits::kMaxGridCells)))
+    throw InputError("the map", 0,
+                     "a distance grid of " + std::to_string(width) + " x " + std::to_string(height) + " cells at " +
+                         std::to_string(resolution_m) + " m exceeds the limit of " +
+                         std::to_string(limits::kMaxGridCells) + " cells (core/limits.hpp)",
+                     "use a coarser grid (--set algo.NAME.grid_resolution_m) or a smaller world");
+  g.width = static_cast<int>(width);
+  g.height = static_cast<int>(height);
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> d2(static_cast<size_t>(g.width) * g.height, inf);
   for (const auto& p : occupied) {

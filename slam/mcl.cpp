@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "core/odometry_model.hpp"
 #include "slam/map_points.hpp"
 #include "slam/particle_weights.hpp"
@@ -31,7 +32,8 @@ Mcl::Mcl(const MclConfig& config) : config_(config) {
   auto fail = [](const char* field, const char* fix) {
     throw InputError(std::string("--set algo.mcl.") + field, 0, "invalid value", fix);
   };
-  if (config_.particles < 1) fail("particles", "set particles >= 1 (e.g. 500)");
+  if (config_.particles < 1 || config_.particles > limits::kMaxParticles)
+    fail("particles", ("set particles to 1 .. " + std::to_string(limits::kMaxParticles) + " (e.g. 500)").c_str());
   if (!(config_.sigma_hit_m > 0)) fail("sigma_hit_m", "give a positive std (e.g. 0.05)");
   if (!(config_.z_hit > 0 && config_.z_hit <= 1)) fail("z_hit", "z_hit lies in (0, 1]");
   if (!(config_.max_distance_m > 0) || !(config_.grid_resolution_m > 0)) fail("max_distance_m", "must be > 0");

@@ -1,4 +1,4 @@
-#include "python/src/bindings.hpp"
+#include "bindings.hpp"
 
 namespace slambox::python {
 

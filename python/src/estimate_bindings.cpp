@@ -2,7 +2,7 @@
 // slambox.Metrics (a metrics.json entry read by attribute).
 #include <cmath>
 
-#include "python/src/bindings.hpp"
+#include "bindings.hpp"
 
 namespace slambox::python {
 namespace {

@@ -7,7 +7,7 @@
 #include "core/tum.hpp"
 #include "core/version.hpp"
 #include "eval/evaluate.hpp"
-#include "python/src/bindings.hpp"
+#include "bindings.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulate.hpp"
 

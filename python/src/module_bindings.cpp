@@ -6,7 +6,7 @@
 
 #include "core/slam_module.hpp"
 #include "core/stream_io.hpp"
-#include "python/src/bindings.hpp"
+#include "bindings.hpp"
 
 namespace slambox::python {
 namespace {

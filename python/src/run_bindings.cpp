@@ -4,7 +4,7 @@
 
 #include "app/run_modules.hpp"
 #include "core/error.hpp"
-#include "python/src/bindings.hpp"
+#include "bindings.hpp"
 
 namespace slambox::python {
 namespace {

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "core/stream_io.hpp"
-#include "python/src/bindings.hpp"
+#include "bindings.hpp"
 
 namespace slambox::python {
 namespace {

@@ -4,11 +4,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/json_io.hpp"
+#include "core/ros_map.hpp"
 #include "tests/support/slambox_cli.hpp"
 
 namespace {
@@ -56,6 +59,28 @@ TEST(Run, WritesTheRunFolderOfTheDesign) {
   // No temporary files are left behind.
   for (const auto& e : fs::recursive_directory_iterator(dir))
     EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos) << e.path();
+  fs::remove_all(dir);
+}
+
+TEST(Run, WritesRosMapsOfEveryGridAndOfTheTrueWorld) {
+  const fs::path dir = TempDir("maps");
+  const Result r = Slambox("run loop --algo odometry,icp-poseslam --set duration_s=20 --no-figures -o " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "maps" / "odometry.yaml")) << "dead reckoning builds no grid";
+  const slambox::OccupancyGrid truth = slambox::ReadRosMap((dir / "maps" / "groundtruth.yaml").string());
+  EXPECT_EQ(truth.resolution_m, 0.05);
+  EXPECT_GT(std::count(truth.cells.begin(), truth.cells.end(), 100), 1000);
+  const slambox::OccupancyGrid map = slambox::ReadRosMap((dir / "maps" / "icp-poseslam.yaml").string());
+  const slambox::Estimate e = slambox::EstimateFromJson(ReadJson(dir / "estimates" / "icp-poseslam.json"));
+  ASSERT_TRUE(e.grid);
+  EXPECT_EQ(map.width, e.grid->width);
+  EXPECT_EQ(map.height, e.grid->height);
+  EXPECT_EQ(map.origin_m, e.grid->origin_m);
+  EXPECT_EQ(map.resolution_m, e.grid->resolution_m);
+  for (size_t i = 0; i < map.cells.size(); ++i) {  // trinary quantization of the module's grid
+    const int c = e.grid->cells[i];
+    ASSERT_EQ(map.cells[i], c < 0 ? -1 : c <= 20 ? 0 : c >= 65 ? 100 : -1) << i;
+  }
   fs::remove_all(dir);
 }
 

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -145,6 +147,38 @@ TEST(StreamIo, CorruptionIsDetected) {
     const std::string err = ErrorOf(path);
     EXPECT_FALSE(err.empty()) << "flip at " << at;
     EXPECT_NE(err.find("byte offset"), std::string::npos) << err;
+  }
+}
+
+TEST(StreamIo, NonFiniteValueInAValidFrameIsRefused) {
+  // A NaN (or an infinity) planted in each kind of record, with a correct checksum: the
+  // frame is valid, the number is not.
+  for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    for (const char* kind : {"odometry", "laser", "landmarks", "gyro", "groundtruth"}) {
+      Stream s = SmallStream();
+      const std::string k = kind;
+      if (k == "groundtruth") {
+        s.groundtruth[s.groundtruth.size() / 2].pose.theta = bad;
+      } else {
+        for (auto& e : s.events) {
+          if (auto* o = std::get_if<OdometryEvent>(&e); o && k == "odometry") { o->delta.x = bad; break; }
+          if (auto* l = std::get_if<LaserScanEvent>(&e); l && k == "laser") { l->ranges_m[7] = bad; break; }
+          if (auto* m = std::get_if<LandmarkEvent>(&e); m && k == "landmarks" && !m->observations.empty()) {
+            m->observations[0].bearing_rad = bad;
+            break;
+          }
+          if (auto* g = std::get_if<GyroEvent>(&e); g && k == "gyro") { g->yaw_rate_rps = bad; break; }
+        }
+      }
+      const std::string path = TempPath("nan.stream");
+      WriteStream(s, path);
+      const std::string err = ErrorOf(path);
+      EXPECT_NE(err.find(path), std::string::npos) << kind << ": " << err;
+      EXPECT_NE(err.find(std::string("non-finite number (") + (std::isnan(bad) ? "nan" : "inf") + ") in a " + k + " record"),
+                std::string::npos)
+          << err;
+      EXPECT_NE(err.find("byte offset"), std::string::npos) << err;
+    }
   }
 }
 

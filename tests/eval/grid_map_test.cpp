@@ -92,5 +92,24 @@ TEST(GridMap, WallShiftedOneCellHandComputed) {
   EXPECT_NEAR(r.mean_truth_to_estimate_m, 0.1, 1e-12);
 }
 
+TEST(GridMap, TrueOccupancyGridCoversTheWallsWithAMargin) {
+  World w;
+  w.wall_segments = {{{0, 0}, {4, 0}}, {{4, 0}, {4, 2}}};
+  w.wall_circles = {{{1, 1}, 0.25}};
+  w.landmarks = {{0, {50, 50}, 0.1}};  // not a wall: does not widen the lattice
+  const OccupancyGrid g = TrueOccupancyGrid(w, 0.1, 0.5);
+  EXPECT_EQ(g.origin_m, Eigen::Vector2d(-0.5, -0.5));
+  EXPECT_EQ(g.width, 51);   // ceil(5.0 / 0.1) + 1
+  EXPECT_EQ(g.height, 31);  // ceil(3.0 / 0.1) + 1
+  ASSERT_EQ(g.cells.size(), 51u * 31u);
+  for (std::int8_t c : g.cells) EXPECT_TRUE(c == 0 || c == 100);
+  EXPECT_EQ(g.cells[5 * 51 + 20], 100);  // (1.55, 0.05) on the bottom wall
+  EXPECT_EQ(g.cells[15 * 51 + 20], 0);   // (1.55, 1.05): 0.5 m from the circle centre, off its boundary
+  const GridMapResult r = EvaluateGridMap(g, w);
+  EXPECT_EQ(r.cell_error, 0.0);
+  EXPECT_EQ(r.known_cells, 51 * 31);
+  EXPECT_EQ(TrueOccupancyGrid(World{}).width, 0);
+}
+
 }  // namespace
 }  // namespace slambox

@@ -46,7 +46,9 @@ TEST(MetricTable, KeysAreUniqueUndottedAndLabelled) {
   EXPECT_EQ(summary[2]->label, "RPE trans [m]");
   EXPECT_TRUE(FindMetric("rpe_trans_max_m")->checked);
   EXPECT_FALSE(FindMetric("rpe_pairs")->checked);
-  EXPECT_FALSE(FindMetric("anees")->checked);
+  EXPECT_TRUE(FindMetric("anees")->checked);  // for drift, either way
+  EXPECT_EQ(FindMetric("anees")->better, Better::kNeither);
+  EXPECT_FALSE(FindMetric("ate_min_m")->checked);
   EXPECT_TRUE(FindMetric("step_time_p95_s")->timing);
   EXPECT_FALSE(FindMetric("ate_rmse_m")->timing);
   EXPECT_TRUE(FindMetric("heading_rmse_deg")->evo);

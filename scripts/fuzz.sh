@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Coverage-guided fuzzing of every reader (tests/fuzz/, libFuzzer + ASan + UBSan).
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (default 600 s each, every target)
+# Builds build-fuzz/ with clang-14, then runs each harness for SECONDS on its corpus:
+# the committed seeds tests/fuzz/corpus/NAME/ (read only) plus build-fuzz/corpus/NAME/,
+# where new inputs are kept between runs. A crash, sanitizer report, leak or an input
+# taking over 1 s is written to build-fuzz/crashes/NAME/ and fails the script.
+# One harness at a time (the machine is shared); CI runs `scripts/fuzz.sh 20`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-600}
+shift || true
+all=(fuzz_stream fuzz_scenario fuzz_sweep fuzz_pose_graph fuzz_carmen fuzz_victoria_park fuzz_tum)
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
+command -v clang++-14 >/dev/null || { echo "fuzz: clang++-14 missing; run scripts/setup.sh" >&2; exit 1; }
+flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1"
+cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DSLAMBOX_BUILD_FUZZ=ON -DSLAMBOX_BUILD_TESTS=OFF -DSLAMBOX_BUILD_BENCH=OFF \
+  $(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache) >/dev/null
+cmake --build build-fuzz -j "${JOBS:-2}" --target "${targets[@]}"
+status=0
+for t in "${targets[@]}"; do
+  name=${t#fuzz_}
+  mkdir -p "build-fuzz/corpus/$name" "build-fuzz/crashes/$name"
+  dict=()
+  [ -f "tests/fuzz/$name.dict" ] && dict=("-dict=tests/fuzz/$name.dict")
+  log="build-fuzz/$t.log"
+  echo "fuzz: $t for ${seconds} s"
+  # -timeout=1: an input over 1 s is a finding (issue 17's target); -rss_limit_mb: a
+  # reader asking for more memory than that is one too.
+  if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    "build-fuzz/tests/fuzz/$t" -max_total_time="$seconds" -timeout=1 -rss_limit_mb=2048 -max_len=65536 \
+    -print_final_stats=1 -artifact_prefix="build-fuzz/crashes/$name/" "${dict[@]}" \
+    "build-fuzz/corpus/$name" "tests/fuzz/corpus/$name" >"$log" 2>&1; then
+    execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
+    cov=$(grep -oE '^#[0-9]+[[:space:]]+DONE[[:space:]]+cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 |
+      sed -E 's/.*cov: ([0-9]+) ft: ([0-9]+)/cov \1, ft \2/' || true)
+    corpus=$(find "build-fuzz/corpus/$name" -type f | wc -l)
+    echo "fuzz: $t ok: $execs executions, ${cov:-cov ?}, $corpus corpus entries kept"
+  else
+    status=1
+    echo "fuzz: $t FOUND A PROBLEM (input in build-fuzz/crashes/$name/):"
+    grep -E "ERROR|SUMMARY|contract violated|Test unit written|timeout" "$log" | head -20
+  fi
+done
+exit $status
