@@ -10,9 +10,8 @@ PACKAGES=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnanoflann-dev
   libpng-dev libfreetype-dev fonts-dejavu-core
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
-  python3-numpy  # tests read the evo result archive with numpy (skipped when absent)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
-  python3-dev python3-pybind11 python3-numpy python3-pytest  # the Python module (python/), for /usr/bin/python3
+  python3-dev python3-pybind11 python3-numpy python3-pytest  # the Python module (python/) for /usr/bin/python3; numpy also reads evo archives in a test
   mrpt-common  # MRPT's own config_files/ (the peers' real-log settings come from them, slam/mrpt/README.md)
   clang-14 libfuzzer-14-dev  # scripts/fuzz.sh: libFuzzer harnesses of every reader (tests/fuzz/)
   python3  # /usr/bin/python3: the exec example (examples/python/), the plugin test compares results.csv rows
