@@ -25,12 +25,7 @@ using Result = slambox::testing::CliResult;
 
 Result Slambox(const std::string& args) { return slambox::testing::RunSlambox(kBinary, args); }
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("slambox_convert_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TempDir(const std::string& name) { return slambox::testing::FreshTempDir("convert_" + name); }
 
 // A robot driving straight down a 4 m wide corridor with a wall ahead, 181-beam scans.
 std::string CorridorLog() {

@@ -32,12 +32,7 @@ fs::path TempDir(const std::string& name) {
   return dir;
 }
 
-std::string Read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string Read(const fs::path& p) { return slambox::testing::ReadText(p); }
 
 json ReadJson(const fs::path& p) { return json::parse(Read(p)); }
 

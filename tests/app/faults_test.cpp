@@ -30,12 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kBinary = SLAMBOX_BINARY;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("slambox_faults_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TempDir(const std::string& name) { return slambox::testing::FreshTempDir("faults_" + name); }
 
 std::string Read(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -30,19 +30,9 @@ const std::string kTestPlugin = kPlugins + "/test_plugin.so";
 
 slambox::testing::CliResult Slambox(const std::string& args) { return slambox::testing::RunSlambox(kBinary, args); }
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("slambox_plugin_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TempDir(const std::string& name) { return slambox::testing::FreshTempDir("plugin_" + name); }
 
-std::string Read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string Read(const fs::path& p) { return slambox::testing::ReadText(p); }
 
 json ReadJson(const fs::path& p) {
   std::ifstream in(p);

@@ -1,6 +1,8 @@
 // End-to-end sweeps through the real binary: identical results at any -j, resume after
 // SIGKILL, crashing and hanging runs recorded as failed, --check on a planted regression.
 #include <gtest/gtest.h>
+
+#include "tests/support/slambox_cli.hpp"
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,19 +18,9 @@ namespace fs = std::filesystem;
 
 const std::string kBinary = SLAMBOX_BINARY;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("slambox_sweep_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TempDir(const std::string& name) { return slambox::testing::FreshTempDir("sweep_" + name); }
 
-std::string Read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string Read(const fs::path& p) { return slambox::testing::ReadText(p); }
 
 int Shell(const std::string& cmd) {
   const int status = std::system((cmd + " >/dev/null 2>&1").c_str());

@@ -28,4 +28,21 @@ inline CliResult RunSlambox(const std::string& binary, const std::string& args) 
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
 }
 
+/// An empty folder slambox_<tag>_<pid> under the system's temporary folder.
+inline std::filesystem::path FreshTempDir(const std::string& tag) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("slambox_" + tag + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+/// A whole file's text ("" when it cannot be read).
+inline std::string ReadText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 }  // namespace slambox::testing
