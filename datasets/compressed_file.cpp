@@ -3,6 +3,7 @@
 #include <bzlib.h>
 #include <zlib.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -17,14 +18,14 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-[[noreturn]] void TooBig(const std::string& path) {
+[[noreturn]] void TooBig(const std::string& path, std::uint64_t max_bytes) {
   throw InputError(path, 0,
-                   "decompresses to more than " + std::to_string(limits::kMaxDecompressedBytes) +
+                   "holds (decompressed) more than " + std::to_string(max_bytes) +
                        " bytes (the limit; public CARMEN logs are tens of MB)",
                    "check that this is the log you meant; split it if it really is that large");
 }
 
-std::string ReadGzip(const std::string& path) {
+std::string ReadGzip(const std::string& path, std::uint64_t max_bytes) {
   gzFile f = gzopen(path.c_str(), "rb");
   if (!f) throw InputError(path, 0, "cannot open the file", "check the path and its permissions");
   std::string out;
@@ -32,9 +33,9 @@ std::string ReadGzip(const std::string& path) {
   int n = 0;
   while ((n = gzread(f, buffer, sizeof buffer)) > 0) {
     out.append(buffer, static_cast<size_t>(n));
-    if (out.size() > limits::kMaxDecompressedBytes) {
+    if (out.size() > max_bytes) {
       gzclose(f);
-      TooBig(path);
+      TooBig(path, max_bytes);
     }
   }
   int code = Z_OK;
@@ -45,16 +46,19 @@ std::string ReadGzip(const std::string& path) {
   return out;
 }
 
-std::string ReadPlain(const std::string& path) {
+std::string ReadPlain(const std::string& path, std::uint64_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open the file", "check the path and its permissions");
+  std::error_code error;
+  const auto bytes = std::filesystem::file_size(path, error);
+  if (!error && bytes > max_bytes) TooBig(path, max_bytes);
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
 }
 
-std::string ReadBzip2(const std::string& path) {
-  std::string packed = ReadPlain(path);
+std::string ReadBzip2(const std::string& path, std::uint64_t max_bytes) {
+  std::string packed = ReadPlain(path, max_bytes);
   std::string out;
   char buffer[1 << 16];
   size_t consumed = 0;
@@ -70,9 +74,9 @@ std::string ReadBzip2(const std::string& path) {
       z.avail_out = sizeof buffer;
       code = BZ2_bzDecompress(&z);
       out.append(buffer, sizeof buffer - z.avail_out);
-      if (out.size() > limits::kMaxDecompressedBytes) {
+      if (out.size() > max_bytes) {
         BZ2_bzDecompressEnd(&z);
-        TooBig(path);
+        TooBig(path, max_bytes);
       }
       if (code == BZ_OK && z.avail_in == 0 && z.avail_out > 0) break;  // input ended inside a stream
     }
@@ -87,10 +91,10 @@ std::string ReadBzip2(const std::string& path) {
 
 }  // namespace
 
-std::string ReadMaybeCompressedFile(const std::string& path) {
-  if (EndsWith(path, ".gz")) return ReadGzip(path);
-  if (EndsWith(path, ".bz2")) return ReadBzip2(path);
-  return ReadPlain(path);
+std::string ReadMaybeCompressedFile(const std::string& path, std::uint64_t max_bytes) {
+  if (EndsWith(path, ".gz")) return ReadGzip(path, max_bytes);
+  if (EndsWith(path, ".bz2")) return ReadBzip2(path, max_bytes);
+  return ReadPlain(path, max_bytes);
 }
 
 }  // namespace slambox

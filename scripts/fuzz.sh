@@ -10,7 +10,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-600}
 shift || true
-all=(fuzz_stream fuzz_scenario fuzz_sweep fuzz_pose_graph fuzz_carmen fuzz_victoria_park fuzz_tum)
+all=(fuzz_stream fuzz_scenario fuzz_sweep fuzz_pose_graph fuzz_carmen fuzz_victoria_park fuzz_tum
+  fuzz_relations fuzz_exec_answer)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
 command -v clang++-14 >/dev/null || { echo "fuzz: clang++-14 missing; run scripts/setup.sh" >&2; exit 1; }
