@@ -143,6 +143,7 @@ def test_python_dead_reckoning_matches_the_cpp_one():
     assert py.metrics.ate_rmse_m == pytest.approx(cpp.metrics.ate_rmse_m, abs=1e-9)
     assert py.metrics.anees is None  # no covariance given: NEES is null, not 0
     assert py.metrics.ate_rmse_m > 0.01  # odometry noise is there
+    assert [r.name for r in res] == ["py-odometry", "odometry"] == res.names  # iterating, as python/README.md does
 
 
 def test_a_python_module_that_raises_fails_alone():
