@@ -2,30 +2,18 @@
 //  [--check BASELINE.csv --tolerance X]` and `slambox sweep --merge DIR`.
 #include <unistd.h>
 
-#include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <fstream>
-#include <set>
 #include <sstream>
-#include <thread>
 
 #include "app/commands.hpp"
-#include "app/registry.hpp"
-#include "app/render_library.hpp"
-#include "app/run.hpp"
-#include "app/sweep_exec.hpp"
 #include "app/sweep_run.hpp"
 #include "app/sweep_lock.hpp"
 #include "app/sweep_slurm.hpp"
 #include "app/sweep_check.hpp"
 #include "app/sweep_summary.hpp"
-#include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/stream_io.hpp"
-#include "eval/relations.hpp"
-#include "sim/scenario.hpp"
 
 namespace slambox {
 
