@@ -38,6 +38,16 @@ TEST(IcpPoseSlam, AccurateOnTwoLapRingWithLoopClosures) {
   EXPECT_GT(est.pose_graph.nodes.size(), 50u);
   EXPECT_EQ(est.pose_graph.node_t_s.size(), est.pose_graph.nodes.size());
   EXPECT_TRUE(est.diagnostics.count("loop_closures_accepted"));
+  // Consistency of what the solution keeps: chi2 per front-end edge and accepted closure,
+  // about 1 for a consistent graph, and at most the chi2 over all edges (rejected too).
+  const double per_kept = est.diagnostics.at("pose_graph_chi2_per_kept_edge").back().second;
+  const double all = est.diagnostics.at("pose_graph_chi2").back().second;
+  std::printf("ring x2: chi2 per kept edge %.3f, chi2 over all %zu edges %.1f\n", per_kept, est.pose_graph.edges.size(), all);
+  EXPECT_GT(per_kept, 0.0);
+  EXPECT_LT(per_kept, 3.0);
+  const auto kept = std::count_if(est.pose_graph.edges.begin(), est.pose_graph.edges.end(),
+                                  [](const PoseGraphView::Edge& e) { return e.accepted; });
+  EXPECT_LE(per_kept * static_cast<double>(kept), all * (1 + 1e-9));
 }
 
 // Pose covariances: keyframe marginals of the pose graph composed with the covariance
