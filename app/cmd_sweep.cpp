@@ -73,8 +73,18 @@ void Validate(const SweepSpec& spec, const std::vector<SweepRun>& runs) {
 void WriteManifest(const std::string& dir, const SweepSpec& spec) {
   nlohmann::json grid = nlohmann::json::object();
   for (const auto& [k, v] : spec.grid) grid[k] = v;
-  const nlohmann::json manifest = {
-      {"scenarios", spec.scenarios}, {"algorithms", spec.algorithms}, {"seeds", spec.seeds}, {"grid", grid}};
+  // Which modules are baselines (ModuleInfo::baseline): the figures style them by this flag.
+  nlohmann::json modules = nlohmann::json::object();
+  for (const auto& name : spec.algorithms) {
+    if (name == "all") {
+      for (const auto& m : AllModules()) modules[m.name] = {{"baseline", m.baseline}};
+    } else {
+      modules[name] = {{"baseline", FindModule(name).baseline}};
+    }
+  }
+  const nlohmann::json manifest = {{"scenarios", spec.scenarios}, {"algorithms", spec.algorithms},
+                                   {"seeds", spec.seeds},         {"grid", grid},
+                                   {"interval", IntervalMethodName(spec.interval)}, {"modules", modules}};
   WriteFileAtomic(dir + "/sweep.json", manifest.dump(1) + "\n");
 }
 
@@ -158,6 +168,8 @@ void Sweep(const SweepArgs& a) {
   o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.timeout_s = spec.timeout_s;
   o.progress_bar = isatty(STDERR_FILENO);
+  o.pictures = a.figures;
+  if (o.pictures) Render();  // loaded once here: the forked workers inherit it
   const ExecSummary s = ExecuteRuns(mine, o);
   std::cout << "sweep: " << s.executed << " runs executed, " << s.skipped << " already done, " << s.failed << " failed\n";
   if (a.shard.empty()) Finish(a, a.out_dir, spec, all);
