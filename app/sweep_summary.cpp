@@ -85,6 +85,11 @@ std::string SummaryMarkdown(const ResultsTable& table, const SweepSpec& spec, st
      << spec.seeds.size() << " seeds)";
   if (missing) md << "; **" << missing << " runs have no result yet** (resume the sweep)";
   md << ". " << SummaryCaption(spec.interval);
+  if (!table.grid_keys.empty()) {
+    md << "Swept (the `parameters` column names each by its last part):";
+    for (const auto& k : table.grid_keys) md << " `" << k << "`";
+    md << ".\n";
+  }
   for (const auto& scenario : ScenariosOf(table)) md << "\n" << ScenarioSummary(table, scenario, spec.interval);
   return md.str();
 }

@@ -57,9 +57,16 @@ struct Cell {
   std::map<std::string, std::vector<double>> values;  ///< metric -> values of the ok runs
 };
 
-std::string Params(const CellKey& key) {
+/// "sigma_range_m=0.01, laps=2": each swept key by its last part when those are distinct
+/// (the full keys are in the caption line and results.csv), else in full.
+std::string Params(const CellKey& key, const std::vector<std::string>& grid_keys) {
+  auto last = [](const std::string& k) { return k.substr(k.rfind('.') + 1); };
+  std::vector<std::string> parts;
+  for (const auto& k : grid_keys) parts.push_back(last(k));
+  std::sort(parts.begin(), parts.end());
+  const bool short_names = std::adjacent_find(parts.begin(), parts.end()) == parts.end();
   std::string out;
-  for (const auto& [k, v] : key.grid) out += (out.empty() ? "" : ", ") + k + "=" + v;
+  for (const auto& [k, v] : key.grid) out += (out.empty() ? "" : ", ") + (short_names ? last(k) : k) + "=" + v;
   return out.empty() ? "–" : out;
 }
 
@@ -138,7 +145,7 @@ std::string ScenarioSummary(const ResultsTable& table, const std::string& scenar
   std::vector<IntervalMethod> methods;
   for (const Cell& c : cells) {
     std::vector<std::string> row{c.key.algorithm};
-    if (grid) row.push_back(Params(c.key));
+    if (grid) row.push_back(Params(c.key, table.grid_keys));
     const std::string ok = c.ok < c.all ? std::to_string(c.ok) + "/" + std::to_string(c.all) + " ok" : "";
     for (const MetricDescriptor* d : shown) {
       const auto it = c.values.find(d->key);
@@ -153,7 +160,7 @@ std::string ScenarioSummary(const ResultsTable& table, const std::string& scenar
       const MeanInterval iv = IntervalOfMean(it->second, interval, /*nonnegative=*/true);  // RMSEs and ANEES
       methods.push_back(iv.method);
       std::vector<std::string> drow{c.key.algorithm};
-      if (grid) drow.push_back(Params(c.key));
+      if (grid) drow.push_back(Params(c.key, table.grid_keys));
       drow.insert(drow.end(), {d->label, std::to_string(s.n), Fixed(s.median, Decimals(s.median)), IntervalText(iv)});
       detail.push_back(drow);
     }
