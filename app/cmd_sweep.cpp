@@ -79,7 +79,8 @@ void WriteManifest(const std::string& dir, const SweepSpec& spec) {
     if (name == "all") {
       for (const auto& m : AllModules()) modules[m.name] = {{"baseline", m.baseline}};
     } else {
-      modules[name] = {{"baseline", FindModule(name).baseline}};
+      const ModuleInfo& m = FindModule(name);  // by its own name (exec:PATH.yaml runs as exec:STEM)
+      modules[m.name] = {{"baseline", m.baseline}};
     }
   }
   const nlohmann::json manifest = {{"scenarios", spec.scenarios}, {"algorithms", spec.algorithms},

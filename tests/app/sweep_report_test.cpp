@@ -33,18 +33,20 @@ TEST(SweepReportCli, WorkersDrawPicturesAndModulesCarryTheirBaselineFlag) {
   const json spec = json::parse(slambox::testing::ReadText(dir / "out/sweep.json"));
   EXPECT_EQ(spec["modules"]["odometry"]["baseline"], true);
   EXPECT_EQ(spec["modules"]["icp-odometry"]["baseline"], false);
-  EXPECT_EQ(spec["modules"][exec]["baseline"], true) << spec.dump(1);
+  EXPECT_EQ(spec["modules"]["exec:my-reference"]["baseline"], true) << spec.dump(1);  // its own name
   EXPECT_EQ(spec["interval"], "auto");
   int runs = 0;
   for (const auto& e : fs::directory_iterator(dir / "out/runs")) {
     ++runs;
     const json m = json::parse(slambox::testing::ReadText(e.path() / "metrics.json"));
     EXPECT_EQ(m["modules"]["odometry"]["baseline"], true);
-    EXPECT_EQ(m["modules"][exec]["baseline"], true);
+    EXPECT_EQ(m["modules"]["exec:my-reference"]["baseline"], true) << m["modules"].dump();
     EXPECT_TRUE(fs::exists(e.path() / "pictures/trajectories.png")) << e.path();
     EXPECT_FALSE(fs::exists(e.path() / "figures")) << "workers draw the pictures only";
     // A map per mapping module of the run: ekf-slam on landmarks (icp-odometry keeps no map).
-    if (m["scenario"] == "landmarks") EXPECT_TRUE(fs::exists(e.path() / "pictures/map_ekf-slam.png")) << e.path();
+    if (m["scenario"] == "landmarks") {
+      EXPECT_TRUE(fs::exists(e.path() / "pictures/map_ekf-slam.png")) << e.path();
+    }
   }
   EXPECT_EQ(runs, 4);
   const std::string html = slambox::testing::ReadText(dir / "out/report.html");
