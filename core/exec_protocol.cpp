@@ -134,7 +134,8 @@ void CheckKeys(const FlatObject& j, std::initializer_list<const char*> required,
                std::initializer_list<const char*> optional, const LineContext& c) {
   for (const char* k : required)
     if (!j.Find(k)) c.Fail(std::string("missing key '") + k + "'");
-  for (const auto& [key, value] : j.members) {
+  for (const auto& member : j.members) {
+    const auto& key = member.first;  // not a structured binding: clang 14 cannot capture one
     const auto is = [&](const char* k) { return key == k; };
     if (std::none_of(required.begin(), required.end(), is) && std::none_of(optional.begin(), optional.end(), is))
       c.Fail("unknown key '" + key + "'");
