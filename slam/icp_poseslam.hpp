@@ -69,7 +69,7 @@ struct IcpPoseSlamConfig {
   double source_voxel_m = 0.0;           ///< [m] subsample scans (0 = every valid beam)
   double map_voxel_m = 0.05;             ///< [m] voxel size of Estimate::map_points
   double grid_resolution_m = 0.05;       ///< [m] occupancy grid cell (0 = no grid)
-  bool compute_covariance = true;        ///< pose covariances for NEES (one ceres::Covariance at the end)
+  bool compute_covariance = true;        ///< pose covariances for NEES (one selected inversion at the end)
 };
 void BindParams(IcpPoseSlamConfig& c, ParamBinder& b);
 
