@@ -3,12 +3,15 @@
 # tests/mutation/mutants.tsv to the source tree, rebuilds only what the suite runs
 # (target slambox_test_suite: no benchmark; ccache), runs the CTest suite and records which
 # tests caught it; then puts the file back byte for byte. Every mutant must be caught.
-# Not part of CI (per mutant a rebuild and the suite, the accuracy sweep too when the suite
-# misses it): run it before a release-sized change.
+# The suite runs in stages and stops at the first stage that fails: the layers' unit and
+# module tests (labels core sim slam eval datasets mrpt), then the end-to-end ones (app,
+# render, python, plugins), then the accuracy regression sweep; "caught by" lists the failing
+# tests of that stage. Not part of CI (a rebuild and one to three stages per mutant): run it
+# before a release-sized change.
 #   bash scripts/mutation_check.sh [REGEX]   # only the mutants whose id matches REGEX
 #   JOBS=2 BUILD_DIR=build                   # the defaults: nproc, build/ (configured if absent)
-# The unmutated suite runs first: a test failing there would "catch" every mutant, so the
-# check stops (exit 2). Output: a Markdown table on stdout (mutant, file, bug, tests that
+# Each stage first runs once unmutated: a test failing there would "catch" every mutant, so
+# the check stops (exit 2). Output: a Markdown table on stdout (mutant, file, bug, tests that
 # failed, seconds for rebuild + tests) and exit 1 when a mutant survived. Each line of
 # mutants.tsv is
 #   id <TAB> file <TAB> original text <TAB> mutated text <TAB> what the bug is
@@ -23,6 +26,11 @@ log=$(mktemp -d "${TMPDIR:-/tmp}/slambox-mutation.XXXXXX")
 echo "mutation_check: logs in $log" >&2
 
 current=  # the file that holds a mutant right now, its original bytes in $log/original
+plant() {  # plant FILE ORIGINAL MUTATED
+  cp "$1" "$log/original"
+  current=$1
+  python3 -c 'import sys; p,a,b=sys.argv[1:4]; s=open(p).read(); open(p,"w").write(s.replace(a,b,1))' "$1" "$2" "$3"
+}
 restore() {
   if [ -n "$current" ]; then cat "$log/original" >"$current"; current=; fi  # new mtime: rebuilt next time
 }
@@ -49,16 +57,31 @@ summarize() {
   [ "$n" -gt 5 ] && printf ' (+%d more)' $((n - 5))
   return 0
 }
-suite() { ctest --test-dir "$build" -j "$jobs" --timeout 600 -LE "cluster|regression" </dev/null >"$1" 2>&1 || true; }
-regression() { ctest --test-dir "$build" --timeout 900 -L regression </dev/null >"$1" 2>&1 || true; }
+stages=(unit end-to-end regression)
+declare -A stage_args=(
+  [unit]='-L ^(core|sim|slam|eval|datasets|mrpt)$'
+  [end-to-end]='-LE ^(core|sim|slam|eval|datasets|mrpt|cluster|regression)$'
+  [regression]='-L ^regression$')
+declare -A stage_clean=()
+run_stage() {  # run_stage STAGE LOG: that stage's tests into LOG
+  local j=$jobs
+  [ "$1" = regression ] && j=1  # one sweep, itself parallel
+  # shellcheck disable=SC2086
+  ctest --test-dir "$build" -j "$j" --timeout 900 ${stage_args[$1]} </dev/null >"$2" 2>&1 || true
+}
+check_clean() {  # the stage passes on the unmutated tree (once; the tree is unmutated here)
+  [ -n "${stage_clean[$1]:-}" ] && return 0
+  run_stage "$1" "$log/unmutated.$1"
+  failed_tests "$log/unmutated.$1" >"$log/unmutated.$1.failed"
+  if [ -s "$log/unmutated.$1.failed" ] || ! grep -q '100% tests passed' "$log/unmutated.$1"; then
+    echo "mutation_check: the unmutated $1 tests fail ($(summarize "$log/unmutated.$1.failed")); see $log/unmutated.$1" >&2
+    exit 2
+  fi
+  stage_clean[$1]=1
+}
 
 rebuild "$log/unmutated.build" || { echo "mutation_check: the unmutated tree does not build (see $log/unmutated.build)" >&2; exit 2; }
-suite "$log/unmutated.ctest"
-failed_tests "$log/unmutated.ctest" >"$log/unmutated.failed"
-if [ -s "$log/unmutated.failed" ] || ! grep -q '100% tests passed' "$log/unmutated.ctest"; then
-  echo "mutation_check: the unmutated suite fails ($(summarize "$log/unmutated.failed")); see $log/unmutated.ctest" >&2
-  exit 2
-fi
+check_clean unit
 
 survived=0
 start_all=$SECONDS
@@ -70,24 +93,24 @@ while IFS=$'\t' read -r -u 3 id file original mutated what; do
   count=$(python3 -c 'import sys; print(open(sys.argv[1]).read().count(sys.argv[2]))' "$file" "$original")
   if [ "$count" != 1 ]; then echo "| $id | \`$file\` | $what | **pattern found $count times: fix mutants.tsv** | |"; survived=1; continue; fi
   start=$SECONDS
-  cp "$file" "$log/original"
-  current=$file
-  python3 -c 'import sys; p,a,b=sys.argv[1:4]; s=open(p).read(); open(p,"w").write(s.replace(a,b,1))' "$file" "$original" "$mutated"
+  plant "$file" "$original" "$mutated"
   if ! rebuild "$log/$id.build"; then
     echo "| $id | \`$file\` | $what | **build failed** (see $log/$id.build) | $((SECONDS - start)) |"; survived=1; restore; continue
   fi
-  # The unit and module tests first; the accuracy regression sweep (a minute) only when they
-  # all pass, so a mutant costs one rebuild plus the suite.
-  suite "$log/$id.ctest"
-  failed_tests "$log/$id.ctest" >"$log/$id.failed"
-  if [ ! -s "$log/$id.failed" ]; then
-    regression "$log/$id.regression"
-    failed_tests "$log/$id.regression" >"$log/$id.failed"
-  fi
-  if [ -s "$log/$id.failed" ]; then caught=$(summarize "$log/$id.failed"); else caught="**survived**"; survived=1; fi
+  caught="**survived**"
+  for stage in "${stages[@]}"; do
+    if [ -z "${stage_clean[$stage]:-}" ]; then  # the stage's unmutated run, once, when first needed
+      restore; rebuild "$log/unmutated.build" || exit 2; check_clean "$stage"
+      plant "$file" "$original" "$mutated"; rebuild "$log/$id.build" || exit 2
+    fi
+    run_stage "$stage" "$log/$id.$stage"
+    failed_tests "$log/$id.$stage" >"$log/$id.failed"
+    if [ -s "$log/$id.failed" ]; then caught="$(summarize "$log/$id.failed") ($stage)"; break; fi
+  done
+  [ "$caught" = "**survived**" ] && survived=1
   restore
   echo "| $id | \`$file\` | $what | $caught | $((SECONDS - start)) |"
 done 3<"$table"  # fd 3: a test that reads stdin must not eat the table
-echo "mutation_check: $((SECONDS - start_all)) s for the mutants (after the unmutated build and suite)" >&2
+echo "mutation_check: $((SECONDS - start_all)) s for the mutants (after the unmutated build and unit tests)" >&2
 rebuild "$log/final.build" || true  # back to the unmutated binaries
 exit $survived
