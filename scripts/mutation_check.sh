@@ -52,10 +52,10 @@ failed_tests() {
 }
 # "A, B, C, D, E (+N more)" from a list of names.
 summarize() {
-  local n; n=$(grep -c . "$1" || true)
-  head -5 "$1" | paste -sd, - | sed 's/,/, /g'
-  [ "$n" -gt 5 ] && printf ' (+%d more)' $((n - 5))
-  return 0
+  local n names
+  n=$(grep -c . "$1" || true)
+  names=$(head -5 "$1" | paste -sd, - | sed 's/,/, /g')
+  if [ "$n" -gt 5 ]; then printf '%s (+%d more)' "$names" $((n - 5)); else printf '%s' "$names"; fi
 }
 stages=(unit end-to-end regression)
 declare -A stage_args=(
