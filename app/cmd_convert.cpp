@@ -1,14 +1,18 @@
-// `slambox convert carmen LOG -o STREAM`: a real log into a stream file, which `slambox
-// run` replays like a simulated one (without ground truth, so pose metrics are null).
+// `slambox convert carmen LOG -o STREAM` (and `victoria-park`, `rawlog`): a real log into a
+// stream file, which `slambox run` replays like a simulated one (without ground truth, so
+// pose metrics are null). CARMEN logs and MRPT rawlogs become streams the same way
+// (datasets/laser_log.hpp); rawlogs are read by the MRPT plugin (app/rawlog_format.hpp).
 #include <array>
 #include <iostream>
 #include <memory>
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/rawlog_format.hpp"
 #include "core/error.hpp"
 #include "core/stream_io.hpp"
 #include "datasets/carmen_log.hpp"
+#include "datasets/laser_log.hpp"
 #include "datasets/victoria_park.hpp"
 
 namespace slambox {
@@ -18,6 +22,7 @@ namespace {
 struct ConvertRequest {
   std::string input, output;
   CarmenImportOptions carmen;
+  LaserLogOptions rawlog;
   VictoriaParkImportOptions victoria;
   std::vector<double> alpha;
 };
@@ -49,25 +54,42 @@ void ConvertVictoriaPark(const ConvertRequest& r) {
   std::cerr << line.str() << "\n";
 }
 
-void ConvertCarmen(const ConvertRequest& r) {
-  CarmenImportOptions o = r.carmen;
-  o.odometry_alpha = Alpha(r.alpha, o.odometry_alpha);
-  const Stream s = ReadCarmenLog(r.input, o);
-  WriteStream(s, r.output);
-  long odometry = 0, scans = 0;
+// One line for the user: what the laser log became.
+void ReportLaserLog(const ConvertRequest& r, const Stream& s) {
+  long odometry = 0, scans = 0, landmarks = 0;
   double path_m = 0.0;
   for (const SensorEvent& e : s.events) {
     if (const auto* odo = std::get_if<OdometryEvent>(&e)) ++odometry, path_m += odo->delta.translation().norm();
     scans += std::holds_alternative<LaserScanEvent>(e);
+    landmarks += std::holds_alternative<LandmarkEvent>(e);
   }
   std::ostringstream line;
   line.setf(std::ios::fixed);
   line.precision(1);
   line << "converted " << r.input << ": " << s.header.duration_s << " s, " << path_m << " m by odometry, " << odometry
-       << " odometry, " << scans << " scans (" << s.header.sensors.lidar->beams << " beams over "
-       << s.header.sensors.lidar->fov_deg << " deg, range max " << s.header.sensors.lidar->range_max_m << " m) -> "
-       << r.output;
+       << " odometry, " << scans << " scans";
+  if (s.header.sensors.lidar)
+    line << " (" << s.header.sensors.lidar->beams << " beams over " << s.header.sensors.lidar->fov_deg
+         << " deg, range max " << s.header.sensors.lidar->range_max_m << " m)";
+  if (landmarks) line << ", " << landmarks << " landmark messages";
+  line << " -> " << r.output;
   std::cerr << line.str() << "\n";
+}
+
+void ConvertCarmen(const ConvertRequest& r) {
+  CarmenImportOptions o = r.carmen;
+  o.odometry_alpha = Alpha(r.alpha, o.odometry_alpha);
+  const Stream s = ReadCarmenLog(r.input, o);
+  WriteStream(s, r.output);
+  ReportLaserLog(r, s);
+}
+
+void ConvertRawlog(const ConvertRequest& r) {
+  LaserLogOptions o = r.rawlog;
+  o.odometry_alpha = Alpha(r.alpha, o.odometry_alpha);
+  const Stream s = AssembleLaserLog(RawlogFormat().read(r.input), r.input, o);
+  WriteStream(s, r.output);
+  ReportLaserLog(r, s);
 }
 
 }  // namespace
@@ -86,6 +108,15 @@ void AddConvertCommand(CLI::App& app) {
   carmen->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (Thrun's model; default 0.05,0.005,0.05,0.005)")
       ->delimiter(',');
   carmen->callback([r] { ConvertCarmen(*r); });
+  CLI::App* rawlog = cmd->add_subcommand(
+      "rawlog", "MRPT rawlog (.rawlog, either layout): 2D laser scans, odometry, range-bearing landmarks (MRPT plugin)");
+  rawlog->add_option("rawlog", r->input, "MRPT rawlog file")->required();
+  rawlog->add_option("-o,--output", r->output, "stream file to write")->required();
+  rawlog->add_option("--range-max-m", r->rawlog.range_max_m, "returns at or beyond are misses (default: the scans' maxRange)");
+  rawlog->add_option("--sigma-range-m", r->rawlog.sigma_range_m, "range noise written into the stream header (default 0.01)");
+  rawlog->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (Thrun's model; default 0.05,0.005,0.05,0.005)")
+      ->delimiter(',');
+  rawlog->callback([r] { ConvertRawlog(*r); });
   CLI::App* vp = cmd->add_subcommand("victoria-park", "Victoria Park, preprocessed (VicPark_clean_data.txt): odometry + tree observations, known ids");
   vp->add_option("data", r->input, "VicPark_clean_data.txt (optionally .gz/.bz2)")->required();
   vp->add_option("-o,--output", r->output, "stream file to write")->required();

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "app/eval_options.hpp"
 #include "core/error.hpp"
 #include "core/kitti_poses.hpp"
 #include "core/stream_io.hpp"
@@ -25,13 +26,7 @@ namespace {
 struct EvalArgs {
   std::string gt_path;
   std::string est_path;
-  std::string align = "none";
-  double delta = 1.0;
-  std::string delta_unit = "m";
-  bool all_pairs = false;
-  bool pairs_from_reference = false;
-  double t_max_diff_s = 0.01;
-  bool interpolate = false;
+  EvalChoices trajectory;  ///< --align, --delta, --delta-unit, --all-pairs, ... (app/eval_options)
   bool json = false;
   std::string save_results;
   std::string relations_path;
@@ -64,24 +59,7 @@ Trajectories ReadTrajectories(const std::string& gt_path, const std::string& est
 }
 
 EvalOptions ToOptions(const EvalArgs& a) {
-  EvalOptions o;
-  if (a.align == "none") o.align = AlignMode::kNone;
-  else if (a.align == "se2") o.align = AlignMode::kSE2;
-  else if (a.align == "origin") o.align = AlignMode::kOrigin;
-  else throw InputError("--align", 0, "unknown alignment '" + a.align + "'", "use none, se2 or origin");
-  if (!ParseDeltaUnit(a.delta_unit, o.rpe.unit))
-    throw InputError("--delta-unit", 0, "unknown delta unit '" + a.delta_unit + "'", "use m, f or d");
-  if (!(a.delta > 0.0)) throw InputError("--delta", 0, "delta must be positive", "give e.g. --delta 1");
-  if (o.rpe.unit == DeltaUnit::kFrames && a.delta != std::floor(a.delta))
-    throw InputError("--delta", 0, "a delta in frames must be an integer", "give e.g. --delta 10 --delta-unit f");
-  if (o.rpe.unit == DeltaUnit::kDegrees && a.delta > 180.0)
-    throw InputError("--delta", 0, "a delta in degrees must be within (0, 180]", "give e.g. --delta 90");
-  if (!(a.t_max_diff_s >= 0.0)) throw InputError("--t-max-diff", 0, "must be >= 0", "give e.g. 0.01");
-  o.rpe.delta = a.delta;
-  o.rpe.all_pairs = a.all_pairs;
-  o.rpe.pairs_from_reference = a.pairs_from_reference;
-  o.max_time_diff_s = a.t_max_diff_s;
-  o.interpolate_groundtruth = a.interpolate;
+  EvalOptions o = TrajectoryEvalOptions(a.trajectory, OptionSpelling::kCommandLine);
   if (a.relations_path.empty()) {
     if (!a.stream_path.empty() || a.time_origin_given)
       throw InputError(a.stream_path.empty() ? "--time-origin-s" : "--stream", 0, "only used with --relations",
@@ -154,15 +132,15 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_option("--gt", args->gt_path,
                   "ground-truth trajectory (TUM: t x y z qx qy qz qw, or KITTI: 3 x 4 poses); needs --gt or --relations");
   cmd->add_option("--est", args->est_path, "estimated trajectory (TUM, or KITTI with a KITTI --gt)")->required();
-  cmd->add_option("--align", args->align,
+  cmd->add_option("--align", args->trajectory.align,
                   "alignment before ate_*: none (default), se2 (Umeyama, evo -a) or origin (evo --align_origin)");
-  cmd->add_option("--delta", args->delta, "RPE delta (default 1)");
-  cmd->add_option("--delta-unit", args->delta_unit, "RPE delta unit: m (default), f (frames) or d (degrees)");
-  cmd->add_flag("--all-pairs", args->all_pairs, "RPE over all pairs instead of consecutive ones (evo --all_pairs)");
-  cmd->add_flag("--pairs-from-reference", args->pairs_from_reference,
+  cmd->add_option("--delta", args->trajectory.delta, "RPE delta (default 1)");
+  cmd->add_option("--delta-unit", args->trajectory.delta_unit, "RPE delta unit: m (default), f (frames) or d (degrees)");
+  cmd->add_flag("--all-pairs", args->trajectory.all_pairs, "RPE over all pairs instead of consecutive ones (evo --all_pairs)");
+  cmd->add_flag("--pairs-from-reference", args->trajectory.pairs_from_reference,
                 "choose RPE pairs on the ground truth (evo --pairs_from_reference)");
-  cmd->add_option("--t-max-diff", args->t_max_diff_s, "max. timestamp difference for matching [s] (default 0.01)");
-  cmd->add_flag("--interpolate", args->interpolate, "interpolate ground truth at the estimate's timestamps");
+  cmd->add_option("--t-max-diff", args->trajectory.t_max_diff_s, "max. timestamp difference for matching [s] (default 0.01)");
+  cmd->add_flag("--interpolate", args->trajectory.interpolate, "interpolate ground truth at the estimate's timestamps");
   cmd->add_flag("--json", args->json, "print the metrics as JSON (the keys of one metrics.json entry)");
   cmd->add_option("--save-results", args->save_results,
                   "write evo's result archive (info.json, stats.json, error_array.npz, ...) for evo_res; needs --gt");
@@ -193,10 +171,8 @@ void AddEvalCommand(CLI::App& app) {
     if (est.trajectory.empty())
       throw InputError(args->est_path, 0, "no pose in the file", "give a non-empty TUM file");
     const Evaluation ev = EvaluateEstimate(gt, est, options);
-    if (!args->gt_path.empty() && ev.metrics.matched_poses.value_or(0) == 0)
-      throw InputError(args->est_path, 0,
-                       "no timestamp matches the ground truth within " + std::to_string(args->t_max_diff_s) + " s",
-                       "check that both files use the same clock, or raise --t-max-diff / use --interpolate");
+    if (!args->gt_path.empty())
+      RequireMatchedPoses(ev.metrics, args->trajectory, args->est_path, OptionSpelling::kCommandLine);
     if (!options.relations.empty() && ev.metrics.relation.relations == 0)
       throw InputError(args->est_path, 0,
                        "no relation time has an estimate pose within " + std::to_string(args->relation_max_diff_s) +

@@ -2,10 +2,12 @@
 // as text for offline tools, in the event schema of the exec protocol
 // (docs/exec_protocol.md). jsonl: the header line, one line per event, the finish line.
 // csv: one row per event, the same keys as columns; arrays are space-separated.
+// rawlog: an MRPT rawlog (slam/mrpt/mrpt_rawlog.hpp, through the MRPT plugin) for MRPT's tools.
 #include <iostream>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/rawlog_format.hpp"
 #include "app/run.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -15,7 +17,7 @@ namespace slambox {
 
 namespace {
 
-enum class ExportFormat { kJsonl, kCsv };
+enum class ExportFormat { kJsonl, kCsv, kRawlog };
 
 struct ExportRequest {
   std::string input;
@@ -70,6 +72,11 @@ void AppendCsvRow(const SensorEvent& event, std::string& out) {
 
 void Export(const ExportRequest& r) {
   const Stream stream = LoadOrSimulate(r.input, r.seed, r.seed_given, SplitOverrides(r.sets).scenario);
+  if (r.format == ExportFormat::kRawlog) {
+    RawlogFormat().write(stream, r.output);
+    std::cerr << "exported " << stream.events.size() << " events -> " << r.output << " (MRPT rawlog)\n";
+    return;
+  }
   std::string out;
   if (r.format == ExportFormat::kJsonl) {
     out = ExecHeaderLine(stream.header, "", nullptr, /*with_world=*/true) + "\n";
@@ -87,11 +94,12 @@ void Export(const ExportRequest& r) {
 
 void AddExportCommand(CLI::App& app) {
   auto request = std::make_shared<ExportRequest>();
-  auto* cmd = app.add_subcommand("export", "write a stream's events as JSON Lines or CSV (docs/exec_protocol.md)");
+  auto* cmd = app.add_subcommand("export", "write a stream's events as JSON Lines, CSV (docs/exec_protocol.md) or an MRPT rawlog");
   cmd->add_option("input", request->input, "stream file, built-in scenario name or scenario YAML file")->required();
-  cmd->add_option("--format", request->format, "jsonl (header, events, finish) or csv (one row per event)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, ExportFormat>{{"jsonl", ExportFormat::kJsonl},
-                                                                              {"csv", ExportFormat::kCsv}}))
+  cmd->add_option("--format", request->format,
+                  "jsonl (header, events, finish), csv (one row per event) or rawlog (MRPT, for RawLogViewer / icp-slam)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, ExportFormat>{
+          {"jsonl", ExportFormat::kJsonl}, {"csv", ExportFormat::kCsv}, {"rawlog", ExportFormat::kRawlog}}))
       ->default_str("jsonl");
   cmd->add_option("--seed", request->seed, "simulation seed (scenarios only)")
       ->each([request](const std::string&) { request->seed_given = true; });

@@ -2,28 +2,18 @@
 //  [--check BASELINE.csv --tolerance X]` and `slambox sweep --merge DIR`.
 #include <unistd.h>
 
-#include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <fstream>
-#include <set>
-#include <thread>
+#include <sstream>
 
 #include "app/commands.hpp"
-#include "app/registry.hpp"
-#include "app/render_library.hpp"
-#include "app/run.hpp"
-#include "app/sweep_exec.hpp"
+#include "app/sweep_run.hpp"
 #include "app/sweep_lock.hpp"
 #include "app/sweep_slurm.hpp"
 #include "app/sweep_check.hpp"
 #include "app/sweep_summary.hpp"
-#include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/stream_io.hpp"
-#include "eval/relations.hpp"
-#include "sim/scenario.hpp"
 
 namespace slambox {
 
@@ -39,45 +29,6 @@ struct SweepArgs {
   std::vector<std::string> plugins;  ///< --plugin
 };
 
-void ParseShard(const std::string& text, std::size_t& index, std::size_t& count) {
-  const auto slash = text.find('/');
-  try {
-    if (slash == std::string::npos) throw std::invalid_argument("no slash");
-    index = std::stoul(text.substr(0, slash));
-    count = std::stoul(text.substr(slash + 1));
-  } catch (const std::exception&) {
-    count = 0;
-  }
-  if (count == 0 || index >= count)
-    throw InputError("--shard " + text, 0, "expected I/N with 0 <= I < N", "write e.g. --shard 0/4 (Slurm: $SLURM_ARRAY_TASK_ID/N)");
-}
-
-// Loads every distinct scenario variant and builds every module with its parameters once,
-// so a typo fails the sweep before any run starts instead of failing every run.
-void Validate(const SweepSpec& spec, const std::vector<SweepRun>& runs) {
-  std::set<std::string> seen;
-  for (const auto& run : runs) {
-    std::string key = run.scenario;
-    for (const auto& s : run.sets) key += "\n" + s;
-    if (!seen.insert(key).second) continue;
-    const Overrides o = SplitOverrides(run.sets);
-    // A stream (e.g. a converted log) has its sensors in its header; a scenario in its file.
-    const SensorSuite sensors =
-        run.is_stream ? ReadStreamHeader(run.scenario).sensors : LoadScenario(run.scenario, o.scenario).sensors;
-    ResolveAlgorithms(spec.algorithms, sensors, /*skip_unavailable=*/true);  // throws if none applies
-    if (!run.relations.empty()) ReadRelations(run.relations);  // a malformed file fails before any run
-    for (const auto& [name, params] : o.algo) FindModule(name).create(params);
-  }
-}
-
-void WriteManifest(const std::string& dir, const SweepSpec& spec) {
-  nlohmann::json grid = nlohmann::json::object();
-  for (const auto& [k, v] : spec.grid) grid[k] = v;
-  const nlohmann::json manifest = {
-      {"scenarios", spec.scenarios}, {"algorithms", spec.algorithms}, {"seeds", spec.seeds}, {"grid", grid}};
-  WriteFileAtomic(dir + "/sweep.json", manifest.dump(1) + "\n");
-}
-
 int Check(const SweepArgs& a, const std::string& dir, const SweepSpec& spec) {
   CheckOptions options{.tolerance = {.relative = a.tolerance, .absolute = a.tolerance_abs}};
   for (const auto& [metric, tol] : spec.check_tolerances) options.per_metric[metric] = {tol.first, tol.second};
@@ -86,12 +37,8 @@ int Check(const SweepArgs& a, const std::string& dir, const SweepSpec& spec) {
   return report.regressions.empty() ? 0 : 4;
 }
 
-void Finish(const SweepArgs& a, const std::string& dir, const SweepSpec& spec, const std::vector<SweepRun>& runs) {
-  WriteSweepSummary(dir, spec, runs);
-  if (a.figures) {
-    Render().sweep_figures(dir);
-    Render().write_report(dir);
-  }
+// After the summary is written: what was written, then the regression check.
+void Report(const SweepArgs& a, const std::string& dir, const SweepSpec& spec) {
   std::cout << "wrote " << dir << "/results.csv, summary.md" << (a.figures ? ", report.html" : "") << "\n";
   if (!a.check.empty())
     if (const int code = Check(a, dir, spec)) throw CommandExit{code};
@@ -101,7 +48,8 @@ void Sweep(const SweepArgs& a) {
   if (!a.merge_dir.empty()) {  // rebuild the summary from the shards' run results
     const SweepSpec spec = LoadSweepSpec(a.merge_dir + "/sweep.yaml");
     const SweepLock lock(a.merge_dir, ".lock");
-    Finish(a, a.merge_dir, spec, ExpandSweep(spec));
+    FinishSweep(a.merge_dir, spec, ExpandSweep(spec), a.figures);
+    Report(a, a.merge_dir, spec);
     return;
   }
   if (a.sweep_file.empty()) throw InputError("sweep", 0, "no sweep file given", "slambox sweep SWEEP.yaml -o DIR (or --merge DIR)");
@@ -128,39 +76,24 @@ void Sweep(const SweepArgs& a) {
                                    a.shards, a.cpus_per_task, a.time_limit, a.partition, cli_plugins});
     return;
   }
-  for (const auto& p : plugins) LoadPlugin(p);  // before the workers fork: they inherit the modules
-  Validate(spec, all);
-  std::vector<SweepRun> mine = all;
-  std::string lock_name = ".lock";
-  if (!a.shard.empty()) {
-    std::size_t index = 0, count = 0;
-    ParseShard(a.shard, index, count);
-    lock_name = ".lock.shard-" + std::to_string(index) + "-of-" + std::to_string(count);
-    mine.clear();
-    for (const auto& r : all)
-      if (r.index % count == index) mine.push_back(r);
-  }
-  // Before looking at what is done: a running sweep's half-done folder is not "done".
-  const SweepLock lock(a.out_dir, lock_name);
-  if (!a.resume)
-    for (const auto& r : mine)
-      if (RunComplete(a.out_dir, r))
-        throw InputError(a.out_dir, 0, "the folder already holds results of this sweep",
-                         "add --resume to continue it, or give a new -o folder");
-  fs::create_directories(a.out_dir);
-  WriteFileAtomic(a.out_dir + "/sweep.yaml", [&](std::ostream& out) { out << std::ifstream(a.sweep_file).rdbuf(); });
-  WriteManifest(a.out_dir, spec);
-  ExecOptions o;
+  SweepRunOptions o;
   o.out_dir = a.out_dir;
-  o.worker_exe = a.worker_exe;
-  o.algorithms = spec.algorithms;
+  o.spec_text = [&] {
+    std::stringstream text;
+    text << std::ifstream(a.sweep_file).rdbuf();
+    return text.str();
+  }();
   o.plugins = plugins;
-  o.jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  o.timeout_s = spec.timeout_s;
+  o.shard = a.shard;
+  o.worker_exe = a.worker_exe;
+  o.jobs = a.jobs;
+  o.resume = a.resume;
+  o.figures = a.figures;
   o.progress_bar = isatty(STDERR_FILENO);
-  const ExecSummary s = ExecuteRuns(mine, o);
+  const SweepOutcome outcome = ExecuteSweep(spec, o);
+  const ExecSummary& s = outcome.runs;
   std::cout << "sweep: " << s.executed << " runs executed, " << s.skipped << " already done, " << s.failed << " failed\n";
-  if (a.shard.empty()) Finish(a, a.out_dir, spec, all);
+  if (outcome.summary_written) Report(a, a.out_dir, spec);
   else std::cout << "shard done; when every shard is: slambox sweep --merge " << a.out_dir << "\n";
 }
 

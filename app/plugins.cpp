@@ -129,7 +129,17 @@ std::vector<ManifestModule> ReadManifests(const std::string& dir) {
   return out;
 }
 
+namespace {
+std::string& LibraryDirOverride() {
+  static std::string dir;
+  return dir;
+}
+}  // namespace
+
+void SetSlamboxLibraryDir(const std::string& dir) { LibraryDirOverride() = dir; }
+
 std::string SlamboxLibraryDir() {
+  if (!LibraryDirOverride().empty()) return LibraryDirOverride();
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec) return {};

@@ -40,6 +40,9 @@ std::vector<ManifestModule> ReadManifests(const std::string& dir);
 /// library, and in plugins/ the shipped plugins.
 std::string SlamboxLibraryDir();
 std::string ShippedPluginDir();
+/// For a program that is not slambox (the Python module inside python3): where its
+/// lib/slambox is. Call before the first module, plugin or figure is looked up.
+void SetSlamboxLibraryDir(const std::string& dir);
 
 /// The plugin files a SLAMBOX_PLUGIN_PATH value names: ':'-separated files, or folders
 /// (each folder's *.so, sorted). Throws InputError for an entry that does not exist.

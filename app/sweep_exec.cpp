@@ -51,6 +51,7 @@ pid_t Launch(const SweepRun& run, const ExecOptions& o) {
   fs::create_directories(dir);
   std::vector<std::string> args = {o.worker_exe, "run", run.scenario, "--algo", Join(o.algorithms, ","), "-o", dir,
                                    "--no-figures", "-q", "--skip-unavailable"};
+  if (o.pictures) args.push_back("--sweep-pictures");
   if (!run.is_stream) args.insert(args.end(), {"--seed", std::to_string(run.seed)});
   if (!run.relations.empty()) args.insert(args.end(), {"--relations", run.relations});
   for (const auto& s : run.sets) {
@@ -63,9 +64,12 @@ pid_t Launch(const SweepRun& run, const ExecOptions& o) {
   }
   const std::string log = dir + "/log.txt";
   const pid_t parent = getpid();
+  if (o.fork_hooks.before) o.fork_hooks.before();
   const pid_t pid = fork();
+  if (pid != 0 && o.fork_hooks.after_in_parent) o.fork_hooks.after_in_parent();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
+    if (o.fork_hooks.after_in_child) o.fork_hooks.after_in_child();
     setpgid(0, 0);                   // own group: a timeout kills the run and its children
     prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed sweep leaves no orphan runs behind
     if (getppid() != parent) _exit(126);  // the sweep died before prctl took effect
@@ -87,6 +91,7 @@ pid_t Launch(const SweepRun& run, const ExecOptions& o) {
       request.algorithms = o.algorithms;
       request.output_dir = dir;
       request.figures = false;
+      request.pictures = o.pictures;
       request.quiet = true;
       request.skip_unavailable = true;
       int code = 0;

@@ -5,12 +5,19 @@
 // sweep goes on. A run is complete when its
 // metrics.json (written last, atomically, by `slambox run`) or failed.json exists, so a
 // sweep killed at any moment resumes where it stopped.
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "app/sweep_spec.hpp"
 
 namespace slambox {
+
+/// Called around each fork() by an embedding interpreter (Python's PyOS_BeforeFork,
+/// PyOS_AfterFork_Parent, PyOS_AfterFork_Child), so a forked run can call back into it.
+struct ForkHooks {
+  std::function<void()> before, after_in_parent, after_in_child;
+};
 
 struct ExecOptions {
   std::string out_dir;
@@ -25,6 +32,10 @@ struct ExecOptions {
   double timeout_s = 1800.0;
   bool progress_bar = false;  ///< a redrawn bar on a terminal; plain log lines otherwise
   bool quiet = false;
+  /// Each run draws the report's pictures of itself (RunRequest::pictures); the renderer
+  /// should be loaded before ExecuteRuns, so the forked workers inherit it.
+  bool pictures = false;
+  ForkHooks fork_hooks;
 };
 
 struct ExecSummary {

@@ -120,6 +120,10 @@ MapImage ReadMapImage(const std::string& path, std::int64_t max_pixels) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open the map image", "check the `image:` key of the map YAML");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return DecodeMapImage(path, bytes, max_pixels);
+}
+
+MapImage DecodeMapImage(const std::string& path, const std::string& bytes, std::int64_t max_pixels) {
   if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '2')) return ReadPgm(path, bytes, max_pixels);
   if (bytes.size() >= 8 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) return ReadPngMap(path, bytes, max_pixels);
   throw InputError(path, 0, "not a PGM (P5/P2) or PNG image", "save the map as PGM or PNG");

@@ -18,6 +18,8 @@ struct MapImage {
 /// Picks PGM or PNG by the file's first bytes. Throws InputError naming the file (and the
 /// problem: unknown format, bad header, truncated data, more than `max_pixels`).
 MapImage ReadMapImage(const std::string& path, std::int64_t max_pixels = 400'000'000);
+/// The same for an image's bytes (`path` names it in messages).
+MapImage DecodeMapImage(const std::string& path, const std::string& bytes, std::int64_t max_pixels = 400'000'000);
 
 /// Writes an 8-bit binary PGM (P5) atomically; `pixels` row-major from the top row.
 void WritePgm(const std::string& path, int width, int height, const std::vector<std::uint8_t>& pixels);

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -64,11 +66,19 @@ void WriteRosMap(const std::string& yaml_path, const OccupancyGrid& grid, const 
 }
 
 OccupancyGrid ReadRosMap(const std::string& path) {
+  return ReadRosMap(path, [&](const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in)
+      throw InputError(file, 0, file == path ? "cannot open the map file" : "cannot open the map image",
+                       file == path ? "check the path" : "check the `image:` key of the map YAML");
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  });
+}
+
+OccupancyGrid ReadRosMap(const std::string& path, const MapFileReader& read) {
   YAML::Node doc;
   try {
-    doc = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path, 0, "cannot open the map file", "check the path");
+    doc = YAML::Load(read(path));
   } catch (const YAML::Exception& e) {
     throw InputError(path, e.mark.is_null() ? 0 : e.mark.line + 1, "malformed YAML: " + e.msg, "fix the syntax");
   }
@@ -126,7 +136,7 @@ OccupancyGrid ReadRosMap(const std::string& path) {
 
   MapImage img;
   try {
-    img = ReadMapImage(image_path.string());
+    img = DecodeMapImage(image_path.string(), read(image_path.string()));
   } catch (const InputError& e) {  // name the YAML too: the user edits either
     throw InputError(path, LineOf(image_node), std::string("its image: ") + e.what(), "fix or re-export the image");
   }

@@ -12,6 +12,7 @@
 // cell >= rint(100 occupied_thresh) -> 0, else 205. With the thresholds written (0.65,
 // 0.196, as ROS map_saver writes) a grid of {-1, 0, 100} round-trips bit-exactly; other
 // values are quantized to those three.
+#include <functional>
 #include <string>
 
 #include "core/estimate.hpp"
@@ -34,5 +35,11 @@ void WriteRosMap(const std::string& yaml_path, const OccupancyGrid& grid, const 
 /// outside 0 <= free < occupied <= 1, a non-zero origin yaw, a missing or malformed image.
 /// Keys other than the ones above are ignored (ROS tools add their own).
 OccupancyGrid ReadRosMap(const std::string& yaml_path);
+
+/// A file's bytes by path; throws InputError naming the path when there is no such file.
+using MapFileReader = std::function<std::string(const std::string& path)>;
+/// ReadRosMap through `read` for the YAML and the image (e.g. files embedded in the
+/// binary); the image path is relative to the YAML's folder unless absolute.
+OccupancyGrid ReadRosMap(const std::string& yaml_path, const MapFileReader& read);
 
 }  // namespace slambox

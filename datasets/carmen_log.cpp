@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/limits.hpp"
 #include "datasets/compressed_file.hpp"
+#include "datasets/laser_log.hpp"
 
 namespace slambox {
 
@@ -174,75 +175,17 @@ Stream ParseCarmenLog(const std::string& text, const std::string& name, const Ca
     throw InputError(name, 0, "no FLASER or ROBOTLASER1 message: nothing to convert",
                      "give a CARMEN laser log (.clf / .log, optionally .gz or .bz2)");
 
-  double range_max = o.range_max_m;
-  if (range_max == 0 && log.params.count("robot_front_laser_max")) range_max = log.params["robot_front_laser_max"];
-  if (range_max == 0 && log.scans.front().range_max_m > 0) range_max = log.scans.front().range_max_m;
-  if (range_max == 0) range_max = kDefaultRangeMaxM;
-
-  // The laser is the stream's robot: T_odom_laser = T_odom_robot * T_robot_laser.
-  const SE2 offset = Between(log.scans.front().odometry_pose, log.scans.front().laser_pose);
-  const SE2 offset_inv = offset.inverse();
-  std::stable_sort(log.odometry.begin(), log.odometry.end(),
-                   [](const OdometryPose& a, const OdometryPose& b) { return a.ts < b.ts; });
-  std::stable_sort(log.scans.begin(), log.scans.end(), [](const Scan& a, const Scan& b) { return a.ts < b.ts; });
-  const double t0 = std::min(log.odometry.front().ts, log.scans.front().ts);
-  const auto step = [&](double ts) { return std::llround((ts - t0) / o.dt_s); };
-
-  Stream s;
-  s.header.scenario_name = std::filesystem::path(name).filename().string();
-  s.header.scenario_yaml = "# converted from the CARMEN log " + s.header.scenario_name + " (no ground truth)\n";
-  s.header.dt_s = o.dt_s;
-  s.header.time_origin_s = t0;  // the log's ipc clock at t = 0: relation files use that clock
-  s.header.start_pose = log.odometry.front().pose * offset;
-  // Merge by time: odometry before a scan at the same step (its pose is that scan's).
-  size_t k = 1, j = 0;
-  SE2 previous = log.odometry.front().pose;
-  while (k < log.odometry.size() || j < log.scans.size()) {
-    const bool odometry_next = k < log.odometry.size() && (j == log.scans.size() || step(log.odometry[k].ts) <= step(log.scans[j].ts));
-    if (odometry_next) {
-      const OdometryPose& p = log.odometry[k++];
-      const OdometryEvent e{static_cast<double>(step(p.ts)) * o.dt_s, offset_inv * Between(previous, p.pose) * offset};
-      previous = p.pose;
-      // Two odometry poses in one time step become one event (times must increase).
-      // At time 0 they move the start pose instead (modules record the start at t = 0).
-      auto* last = s.events.empty() ? nullptr : std::get_if<OdometryEvent>(&s.events.back());
-      if (e.t_s == 0.0 && s.events.empty()) s.header.start_pose = s.header.start_pose * e.delta;
-      else if (last && last->t_s == e.t_s) last->delta = last->delta * e.delta;
-      else s.events.push_back(e);
-      continue;
-    }
-    const Scan& in = log.scans[j++];
-    LaserScanEvent e;
-    e.t_s = static_cast<double>(step(in.ts)) * o.dt_s;
-    e.angle_min_rad = in.angle_min_rad;
-    e.angle_increment_rad = in.angle_increment_rad;
-    e.range_min_m = o.range_min_m;
-    e.range_max_m = range_max;
-    for (double r : in.ranges_m) {
-      const bool hit = r >= o.range_min_m && r < range_max;
-      e.ranges_m.push_back(hit ? r : range_max);
-      e.valid.push_back(hit ? 1 : 0);
-    }
-    s.events.push_back(std::move(e));
-  }
-  s.header.duration_s = EventTime(s.events.back());
-  const double duration = std::max(s.header.duration_s, o.dt_s);
-  OdometryConfig odometry;
-  const auto odometry_events = std::count_if(s.events.begin(), s.events.end(),
-                                             [](const SensorEvent& e) { return std::holds_alternative<OdometryEvent>(e); });
-  odometry.rate_hz = static_cast<double>(odometry_events) / duration;
-  odometry.alpha = o.odometry_alpha;
-  LidarConfig lidar;
-  const Scan& first = log.scans.front();
-  lidar.rate_hz = static_cast<double>(log.scans.size()) / duration;
-  lidar.beams = static_cast<int>(first.ranges_m.size());
-  lidar.fov_deg = std::abs(first.angle_increment_rad) * (lidar.beams - (lidar.beams % 2 == 1 ? 1 : 0)) * 180.0 / M_PI;
-  lidar.range_min_m = o.range_min_m;
-  lidar.range_max_m = range_max;
-  lidar.sigma_range_m = o.sigma_range_m;
-  s.header.sensors.odometry = odometry;
-  s.header.sensors.lidar = lidar;
-  return s;
+  LaserLog out;
+  out.format = "CARMEN log";
+  // The laser's mounting, from the first scan's (laser pose, odometry pose) pair.
+  out.T_robot_laser = Between(log.scans.front().odometry_pose, log.scans.front().laser_pose);
+  for (const OdometryPose& p : log.odometry) out.odometry.push_back({p.ts, p.pose});
+  for (Scan& in : log.scans)
+    out.scans.push_back({in.ts, in.angle_min_rad, in.angle_increment_rad, in.range_max_m, std::move(in.ranges_m), {}});
+  const auto param = log.params.find("robot_front_laser_max");
+  const LaserLogOptions options{.range_max_m = o.range_max_m, .range_min_m = o.range_min_m,
+                                .sigma_range_m = o.sigma_range_m, .odometry_alpha = o.odometry_alpha, .dt_s = o.dt_s};
+  return AssembleLaserLog(std::move(out), name, options, param == log.params.end() ? 0.0 : param->second);
 }
 
 Stream ReadCarmenLog(const std::string& path, const CarmenImportOptions& options) {

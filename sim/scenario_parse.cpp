@@ -31,18 +31,36 @@ YAML::Node Sequence(const YamlSource& src, const YAML::Node& map, const std::str
   return v;
 }
 
-// The map.yaml path is relative to the scenario file (absolute paths as given). Built-in
-// scenarios are embedded text: they cannot name a map image yet.
+// The map.yaml path is relative to the scenario file (absolute paths as given). A built-in
+// scenario's relative path, or any path written `builtin:maps/NAME.yaml` (as `scenario show`
+// prints it), names a file of scenarios/maps/ embedded in the binary.
+constexpr const char* kBuiltinPrefix = "builtin:";
+
+std::string EmbeddedFileBytes(const std::string& path) {
+  const std::string name = path.substr(std::string(kBuiltinPrefix).size());
+  for (const auto& f : EmbeddedFiles())
+    if (name == f.path) return std::string(reinterpret_cast<const char*>(f.data), f.size);
+  std::string known;
+  for (const auto& f : EmbeddedFiles()) known += (known.empty() ? "" : ", ") + std::string(f.path);
+  throw InputError(path, 0, "no such built-in map file (built in: " + (known.empty() ? "none" : known) + ")",
+                   "name one of them, or give a path to a map.yaml on disk");
+}
+
 void ParseOccupancyMap(const YamlSource& src, const YAML::Node& node, Scenario& s) {
   const std::string value = ReadString(src, node, "world.occupancy_map");
-  std::filesystem::path path(value);
-  if (path.is_relative() && src.file.rfind("builtin:", 0) == 0)
-    Fail(src, node, "a built-in scenario cannot name a map file (it is not embedded)", "give an absolute path");
-  if (path.is_relative()) path = std::filesystem::path(src.file).parent_path() / path;
-  s.occupancy_map = std::filesystem::absolute(path).lexically_normal().string();
+  const bool builtin_source = src.file.rfind(kBuiltinPrefix, 0) == 0;
+  const bool embedded = value.rfind(kBuiltinPrefix, 0) == 0 || (builtin_source && std::filesystem::path(value).is_relative());
+  if (embedded) {
+    const std::string name = value.rfind(kBuiltinPrefix, 0) == 0 ? value.substr(std::string(kBuiltinPrefix).size()) : value;
+    s.occupancy_map = kBuiltinPrefix + std::filesystem::path(name).lexically_normal().string();
+  } else {
+    std::filesystem::path path(value);
+    if (path.is_relative()) path = std::filesystem::path(src.file).parent_path() / path;
+    s.occupancy_map = std::filesystem::absolute(path).lexically_normal().string();
+  }
   s.occupancy_map_line = LineOf(src, node);
   try {
-    s.occupancy_grid = ReadRosMap(s.occupancy_map);
+    s.occupancy_grid = embedded ? ReadRosMap(s.occupancy_map, EmbeddedFileBytes) : ReadRosMap(s.occupancy_map);
   } catch (const InputError& e) {
     Fail(src, node, std::string("world.occupancy_map: ") + e.what(), "give a ROS map.yaml (image, resolution, origin, ...)");
   }

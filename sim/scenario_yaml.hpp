@@ -78,4 +78,13 @@ struct EmbeddedScenario {
 };
 const std::vector<EmbeddedScenario>& EmbeddedScenarios();
 
+/// The files of scenarios/maps/ embedded beside them (map.yaml + image), so a built-in
+/// scenario can name `occupancy_map: maps/NAME.yaml`: {path relative to scenarios/, bytes}.
+struct EmbeddedFile {
+  const char* path;
+  const unsigned char* data;
+  std::size_t size;
+};
+const std::vector<EmbeddedFile>& EmbeddedFiles();
+
 }  // namespace slambox::scenario_detail

@@ -10,6 +10,18 @@ namespace slambox {
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 
+/// Fraction of the source points within radius_m of the target, the source placed at T.
+double FitFraction(const IcpTarget& target, const std::vector<Eigen::Vector2d>& source, const SE2& T,
+                   double radius_m) {
+  int close = 0;
+  for (const auto& p : source) {
+    int index = -1;
+    double d2 = 0.0;
+    if (NearestByKdTree(target, T * p, &index, &d2) && d2 <= radius_m * radius_m) ++close;
+  }
+  return source.empty() ? 0.0 : static_cast<double>(close) / static_cast<double>(source.size());
+}
+
 const EnumNames<EdgeInformationSource> kEdgeInformationNames = {{EdgeInformationSource::kHessian, "hessian"},
                                                              {EdgeInformationSource::kFixed, "fixed"}};
 }  // namespace
@@ -20,6 +32,10 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("adaptive_gate", c.adaptive_gate, "-", "KISS-ICP adaptive correspondence gate for the front end");
   b.Bind("local_map_keyframes", c.local_map_keyframes, "-", "front end registers to this many keyframes before the latest too (0 = latest only)", AtLeast(0));
   b.Bind("local_map_voxel_m", c.local_map_voxel_m, "m", "voxel size of the front end's local map", Above(0));
+  b.Bind("guess_disagreement_m", c.guess_disagreement_m, "m", "odometry and constant-velocity guesses farther apart than this: ICP from both", Above(0));
+  b.Bind("guess_disagreement_deg", c.guess_disagreement_deg, "deg", "... or turned farther apart than this", Above(0));
+  b.Bind("guess_fit_radius_m", c.guess_fit_radius_m, "m", "between two ICP results, the one with more scan points this close to the target wins", Above(0));
+  b.Bind("guess_switch_margin", c.guess_switch_margin, "-", "the constant-velocity result must fit this much better (fraction of points)", AtLeast(0));
   b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m", "new keyframe after this much translation", Above(0));
   b.Bind("keyframe_angle_deg", c.keyframe_angle_deg, "deg", "new keyframe after this much rotation", Above(0));
   b.Bind("edge_information", c.edge_information, kEdgeInformationNames, "information of ICP edges");
@@ -77,6 +93,8 @@ void IcpPoseSlam::Start(const StreamHeader& header) {
   start_pose_ = header.start_pose;
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
   T_kf_robot_ = T_kf_last_scan_ = start_pose_;  // before the first keyframe: absolute
+  T_last_scan_motion_ = SE2();
+  guesses_switched_ = 0;
   odometry_cov_.setZero();
   relative_cov_.setZero();
   path_m_ = 0.0;
@@ -119,8 +137,22 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
   }
   IcpConfig icp = config_.local_map_keyframes > 0 ? local_map_icp_ : icp_;
   if (config_.adaptive_gate) icp.max_correspondence_m = CorrespondenceGate(gate_);
-  const SE2 guess = T_kf_robot_;
-  const IcpResult r = RegisterIcp(points.points, keyframe_target_, guess, icp);
+  SE2 guess = T_kf_robot_;
+  IcpResult r = RegisterIcp(points.points, keyframe_target_, guess, icp);
+  const SE2 cv_guess = T_kf_last_scan_ * T_last_scan_motion_;
+  const SE2 gap = Between(cv_guess, guess);
+  if (gap.translation().norm() > config_.guess_disagreement_m ||
+      std::abs(gap.theta) > config_.guess_disagreement_deg * kDegToRad) {
+    IcpResult r_cv = RegisterIcp(points.points, keyframe_target_, cv_guess, icp);
+    const bool cv_ok = r_cv.converged || r_cv.num_inliers >= icp.min_inliers;
+    const double f_cv = FitFraction(keyframe_target_, points.points, r_cv.T_target_source, config_.guess_fit_radius_m);
+    const double f_odo = FitFraction(keyframe_target_, points.points, r.T_target_source, config_.guess_fit_radius_m);
+    if (cv_ok && f_cv > f_odo + config_.guess_switch_margin) {
+      r = std::move(r_cv);
+      guess = cv_guess;
+      ++guesses_switched_;
+    }
+  }
   const bool ok = r.converged || r.num_inliers >= icp.min_inliers;
   if (ok) {
     if (config_.adaptive_gate) UpdateThreshold(gate_, T_kf_last_scan_.inverse() * guess, T_kf_last_scan_.inverse() * r.T_target_source);
@@ -132,6 +164,7 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
   d["icp_inliers"].emplace_back(scan.t_s, r.num_inliers);
   d["hessian_min_eigenvalue"].emplace_back(scan.t_s, r.eigenvalues(0));
   d["degenerate"].emplace_back(scan.t_s, r.degenerate ? 1.0 : 0.0);
+  T_last_scan_motion_ = Between(T_kf_last_scan_, T_kf_robot_);
   T_kf_last_scan_ = T_kf_robot_;
   const bool far = T_kf_robot_.translation().norm() >= config_.keyframe_distance_m ||
                    std::abs(T_kf_robot_.theta) >= config_.keyframe_angle_deg * kDegToRad;
@@ -286,13 +319,27 @@ PoseGraphSolveResult IcpPoseSlam::Solve(bool marginals) {
     estimate_.loop_closures[static_cast<size_t>(rec)].accepted = on;
     accepted += on ? 1 : 0;
   }
+  // Consistency of what the solution keeps: chi2 per edge over the front-end edges and
+  // the accepted closures (pose_graph_chi2 counts the rejected closures' errors too).
+  double chi2_kept = 0.0;
+  int kept = 0;
+  for (size_t i = 0; i < graph_.edges.size(); ++i) {
+    const int rec = loop_record_of_edge_[i];
+    if (rec >= 0 && !estimate_.loop_closures[static_cast<size_t>(rec)].accepted) continue;
+    const PoseGraphEdge& e = graph_.edges[i];
+    const Eigen::Vector3d err = EdgeError(graph_.poses[static_cast<size_t>(e.from)], graph_.poses[static_cast<size_t>(e.to)], e.T_from_to);
+    chi2_kept += err.dot(e.information * err);
+    ++kept;
+  }
   const double t = keyframes_.back().t_s;
   estimate_.diagnostics["loop_closures_accepted"].emplace_back(t, accepted);
   estimate_.diagnostics["pose_graph_chi2"].emplace_back(t, s.chi2_final);
+  estimate_.diagnostics["pose_graph_chi2_per_kept_edge"].emplace_back(t, kept ? chi2_kept / kept : 0.0);
   return s;
 }
 
 Estimate IcpPoseSlam::Finish() {
+  estimate_.diagnostics["guesses_switched"].emplace_back(records_.empty() ? 0.0 : records_.back().t_s, guesses_switched_);
   std::vector<Eigen::Matrix3d> marginals;
   if (keyframes_.size() > 1) marginals = Solve(config_.compute_covariance).marginal_covariances;
   else if (keyframes_.size() == 1) marginals.assign(1, Eigen::Matrix3d::Zero());  // the anchor alone

@@ -1,6 +1,7 @@
 #pragma once
 // `icp-poseslam`: keyframe pose graph SLAM with ICP. Each scan is registered to the
-// latest keyframe (guess: wheel odometry); a new keyframe starts after keyframe_distance_m
+// latest keyframe (guess: wheel odometry; where it disagrees with the constant-velocity
+// guess, also from that, keeping the better fit); a new keyframe starts after keyframe_distance_m
 // or keyframe_angle_deg, joined by an ICP edge (information from the capped ICP Hessian,
 // or fixed). Loop-closure candidates (slam/loop_closure.hpp) are verified by ICP and the
 // graph is re-solved with Ceres (slam/pose_graph.hpp), a robust kernel on loop edges.
@@ -37,6 +38,14 @@ struct IcpPoseSlamConfig {
   /// (scan-to-submap, kd-tree); 0 = the latest keyframe's scan alone (projection).
   int local_map_keyframes = 3;
   double local_map_voxel_m = 0.05;      ///< [m] voxel size of the merged local map
+  /// Wheel odometry on real logs stalls and jumps (mit-csail: 0.8 s of frozen readings,
+  /// then 85 deg at once); from such a guess ICP settles in a wrong minimum. When the
+  /// odometry guess and the constant-velocity guess (the last scan-to-scan motion again)
+  /// differ by more than this, ICP starts from both and the better fit is kept.
+  double guess_disagreement_m = 0.2;      ///< [m] ... in translation
+  double guess_disagreement_deg = 5.0;    ///< [deg] ... or in heading
+  double guess_fit_radius_m = 0.1;        ///< [m] fit = fraction of scan points this close to the local map
+  double guess_switch_margin = 0.05;      ///< the constant-velocity result must fit this much better to win
   double keyframe_distance_m = 0.5;     ///< [m] new keyframe after this much translation
   double keyframe_angle_deg = 20.0;     ///< [deg] ... or this much rotation
   EdgeInformationSource edge_information = EdgeInformationSource::kHessian;
@@ -106,6 +115,8 @@ class IcpPoseSlam : public SlamModule {
   SE2 start_pose_;
   SE2 T_kf_robot_;                 ///< current pose relative to the latest keyframe
   SE2 T_kf_last_scan_;             ///< the previous scan's pose relative to the latest keyframe
+  SE2 T_last_scan_motion_;         ///< the motion between the two previous scans (their frame)
+  int guesses_switched_ = 0;       ///< scans where the constant-velocity guess fitted better
   Eigen::Matrix3d odometry_cov_ = Eigen::Matrix3d::Zero();  ///< of T_kf_robot_ by the motion model
   Eigen::Matrix3d relative_cov_ = Eigen::Matrix3d::Zero();  ///< of T_kf_robot_: ICP at scans, odometry after
   double path_m_ = 0.0;

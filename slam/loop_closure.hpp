@@ -17,7 +17,7 @@ struct LoopClosureConfig {
   double search_radius_m = 0.5;       ///< [m] base search radius (added to the uncertainty's)
   double radius_per_travel = 0.0;     ///< [m/m] radius growth per metre travelled between them
   double window_sigmas = 3.0;         ///< the window is this many standard deviations wide
-  double max_search_radius_m = 3.0;   ///< [m] radius cap
+  double max_search_radius_m = 8.0;   ///< [m] radius cap
   double search_angle_deg = 5.0;      ///< [deg] base angular window
   double max_search_angle_deg = 30.0; ///< [deg] angular window cap
   int max_candidates = 3;             ///< verifications per new keyframe, nearest first

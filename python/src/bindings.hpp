@@ -40,9 +40,13 @@ struct MetricsView {
 /// or a non-finite value.
 Estimate EstimateFromArrays(const py::object& poses, const py::object& covariances, const py::object& landmarks);
 
+/// "ValueError: message": the last line Python prints for the exception.
+std::string LastTracebackLine(const py::error_already_set& e);
+
 void BindStream(py::module_& m);
 void BindEstimate(py::module_& m);
 void BindModule(py::module_& m);
 void BindRun(py::module_& m);
+void BindSweep(py::module_& m);
 
 }  // namespace slambox::python

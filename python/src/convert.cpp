@@ -46,4 +46,12 @@ std::vector<std::string> SetArguments(const py::dict& overrides) {
   return out;
 }
 
+/// "ValueError: message": the last line Python prints for the exception.
+std::string LastTracebackLine(const py::error_already_set& e) {
+  const py::list lines = py::module_::import("traceback").attr("format_exception_only")(e.type(), e.value());
+  std::string last = lines.empty() ? std::string("unknown Python error") : py::str(lines[lines.size() - 1]).cast<std::string>();
+  while (!last.empty() && (last.back() == '\n' || last.back() == ' ')) last.pop_back();
+  return last;
+}
+
 }  // namespace slambox::python

@@ -1,8 +1,13 @@
 // The Python module `slambox` (python/README.md): scenarios, simulation, streams as NumPy
 // arrays, evaluation, runs of C++ and Python modules. The CLI's own code does the work;
 // this file only converts arguments and results.
-#include <cmath>
+#include <dlfcn.h>
 
+#include <cmath>
+#include <filesystem>
+
+#include "app/eval_options.hpp"
+#include "app/plugins.hpp"
 #include "core/error.hpp"
 #include "core/tum.hpp"
 #include "core/version.hpp"
@@ -30,35 +35,11 @@ Estimate ReadEstimate(const py::object& o, const char* what) {
   }
 }
 
-/// The options of `slambox eval` (app/cmd_eval.cpp): the same validation and messages.
-EvalOptions EvalOptionsFor(const std::string& align, double delta, const std::string& delta_unit, bool all_pairs,
-                           bool pairs_from_reference, double t_max_diff_s, bool interpolate) {
-  EvalOptions o;
-  if (align == "none") o.align = AlignMode::kNone;
-  else if (align == "se2") o.align = AlignMode::kSE2;
-  else if (align == "origin") o.align = AlignMode::kOrigin;
-  else throw InputError("align", 0, "unknown alignment '" + align + "'", "use none, se2 or origin");
-  if (!ParseDeltaUnit(delta_unit, o.rpe.unit))
-    throw InputError("delta_unit", 0, "unknown delta unit '" + delta_unit + "'", "use m, f or d");
-  if (!(delta > 0.0)) throw InputError("delta", 0, "delta must be positive", "give e.g. delta=1");
-  if (o.rpe.unit == DeltaUnit::kFrames && delta != std::floor(delta))
-    throw InputError("delta", 0, "a delta in frames must be an integer", "give e.g. delta=10, delta_unit='f'");
-  if (o.rpe.unit == DeltaUnit::kDegrees && delta > 180.0)
-    throw InputError("delta", 0, "a delta in degrees must be within (0, 180]", "give e.g. delta=90");
-  if (!(t_max_diff_s >= 0.0)) throw InputError("t_max_diff_s", 0, "must be >= 0", "give e.g. 0.01");
-  o.rpe.delta = delta;
-  o.rpe.all_pairs = all_pairs;
-  o.rpe.pairs_from_reference = pairs_from_reference;
-  o.max_time_diff_s = t_max_diff_s;
-  o.interpolate_groundtruth = interpolate;
-  return o;
-}
-
 MetricsView Evaluate(const py::object& gt, const py::object& est, const std::string& align, double delta,
                  const std::string& delta_unit, bool all_pairs, bool pairs_from_reference, double t_max_diff_s,
                  bool interpolate) {
-  const EvalOptions options =
-      EvalOptionsFor(align, delta, delta_unit, all_pairs, pairs_from_reference, t_max_diff_s, interpolate);
+  const EvalChoices choices{align, delta, delta_unit, all_pairs, pairs_from_reference, t_max_diff_s, interpolate};
+  const EvalOptions options = TrajectoryEvalOptions(choices, OptionSpelling::kPython);  // cmd_eval's checks
   GroundTruth truth;
   for (const auto& p : ReadEstimate(gt, "gt").trajectory) truth.trajectory.push_back({p.t_s, p.pose});
   const Estimate estimate = ReadEstimate(est, "est");
@@ -67,9 +48,7 @@ MetricsView Evaluate(const py::object& gt, const py::object& est, const std::str
     py::gil_scoped_release release;
     metrics = EvaluateEstimate(truth, estimate, options).metrics;
   }
-  if (metrics.matched_poses.value_or(0) == 0)
-    throw InputError("est", 0, "no timestamp matches the ground truth within " + std::to_string(t_max_diff_s) + " s",
-                     "check that both use the same clock, or raise t_max_diff_s / use interpolate=True");
+  RequireMatchedPoses(metrics, choices, "est", OptionSpelling::kPython);
   return MetricsView{ToPython(ToJson(metrics)).cast<py::dict>()};
 }
 
@@ -86,6 +65,22 @@ std::shared_ptr<StreamHandle> SimulateScenario(const py::object& scenario, std::
     *stream = Simulate(s, seed);
   }
   return std::make_shared<StreamHandle>(StreamHandle{std::move(stream), {}});
+}
+
+/// lib/slambox (renderer, shipped plugins) for this module: beside the build tree's
+/// build/python/ (build/lib/slambox) or the install's PREFIX/lib/python3/dist-packages/
+/// (PREFIX/lib/slambox); python3's own /proc/self/exe says nothing about either.
+void FindSlamboxLibraryDir() {
+  Dl_info info{};
+  if (!dladdr(reinterpret_cast<void*>(&FindSlamboxLibraryDir), &info) || !info.dli_fname) return;
+  const std::filesystem::path here = std::filesystem::path(info.dli_fname).parent_path();
+  for (const auto& dir : {here.parent_path() / "lib" / "slambox", here.parent_path().parent_path() / "slambox"}) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(dir, ec)) {
+      SetSlamboxLibraryDir(dir.lexically_normal().string());
+      return;
+    }
+  }
 }
 
 }  // namespace
@@ -114,6 +109,8 @@ PYBIND11_MODULE(slambox, m) {
   BindEstimate(m);
   BindModule(m);
   BindRun(m);
+  BindSweep(m);
+  FindSlamboxLibraryDir();
 
   py::class_<Scenario>(m, "Scenario", "A validated scenario (slambox.load_scenario).")
       .def_readonly("name", &Scenario::name)

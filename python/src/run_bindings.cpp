@@ -110,7 +110,8 @@ void BindRun(py::module_& m) {
         throw py::key_error(name);
       })
       .def("__len__", [](const Results& r) { return r.algorithms.size(); })
-      .def("__iter__", [](const Results& r) { return py::iter(py::cast(r.algorithms)); }, py::keep_alive<0, 1>());
+      .def("__iter__", [](const Results& r) { return py::make_iterator(r.algorithms.begin(), r.algorithms.end()); },
+           py::keep_alive<0, 1>());
 
   m.def("run", &Run, py::arg("stream"), py::arg("algorithms") = py::list(py::make_tuple("odometry")),
         py::arg("overrides") = py::dict(), py::arg("relations") = "", R"doc(

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import slambox
+from example_modules import DeadReckoning
 
 # Timings differ between any two runs; every other metric must be bit-identical.
 TIMING_KEYS = {"runtime_s", "realtime_factor", "step_time_median_s", "step_time_p95_s", "step_time_max_s"}
@@ -16,26 +17,6 @@ SHORT = {"duration_s": 30}  # 30 s of `loop`: quick, yet ICP, scans and odometry
 
 def deterministic(metrics):
     return {k: v for k, v in metrics.items() if k not in TIMING_KEYS}
-
-
-class DeadReckoning(slambox.Module):
-    """Composes the odometry increments: x_t = x_{t-1} (+) delta (no covariance)."""
-    name = "py-odometry"
-
-    def start(self, header):
-        p = header["start_pose"]
-        self.x, self.y, self.th = p[0], p[1], p[2]
-        self.poses = [(0.0, self.x, self.y, self.th)]
-
-    def on_odometry(self, t_s, dx_m, dy_m, dtheta_rad):
-        c, s = math.cos(self.th), math.sin(self.th)
-        self.x += c * dx_m - s * dy_m
-        self.y += s * dx_m + c * dy_m
-        self.th = math.remainder(self.th + dtheta_rad, 2 * math.pi)
-        self.poses.append((t_s, self.x, self.y, self.th))
-
-    def finish(self):
-        return slambox.Estimate(np.array(self.poses))
 
 
 def test_scenarios_lists_the_builtins():
@@ -162,6 +143,7 @@ def test_python_dead_reckoning_matches_the_cpp_one():
     assert py.metrics.ate_rmse_m == pytest.approx(cpp.metrics.ate_rmse_m, abs=1e-9)
     assert py.metrics.anees is None  # no covariance given: NEES is null, not 0
     assert py.metrics.ate_rmse_m > 0.01  # odometry noise is there
+    assert [r.name for r in res] == ["py-odometry", "odometry"] == res.names  # iterating, as python/README.md does
 
 
 def test_a_python_module_that_raises_fails_alone():
@@ -243,3 +225,25 @@ def test_evaluate_on_tum_files_gives_the_cli_numbers(tmp_path, cli):
         assert got == want
     arrays = slambox.evaluate(slambox.read_tum(str(gt)), slambox.read_tum(str(est)))
     assert arrays.ate_rmse_m == slambox.evaluate(str(gt), str(est)).ate_rmse_m
+
+
+def test_evaluate_and_cli_eval_refuse_the_same_options_with_the_same_message(tmp_path, cli):
+    cli("run", "loop", "--seed", 1, "--set", "duration_s=10", "--algo", "odometry", "--no-figures", "-q",
+        "-o", tmp_path)
+    gt, est = str(tmp_path / "groundtruth.tum"), str(tmp_path / "odometry.tum")
+    # One check (app/eval_options) for both: the problem is the same text, the option and
+    # the fix are spelled as each caller writes them.
+    cases = [({"align": "sim3"}, ["--align", "sim3"], "unknown alignment 'sim3'", "--align", "align"),
+             ({"delta_unit": "x"}, ["--delta-unit", "x"], "unknown delta unit 'x'", "--delta-unit", "delta_unit"),
+             ({"delta": -1.0}, ["--delta", "-1"], "delta must be positive", "--delta 1", "delta=1"),
+             ({"delta": 2.5, "delta_unit": "f"}, ["--delta", "2.5", "--delta-unit", "f"],
+              "a delta in frames must be an integer", "--delta-unit f", "delta_unit='f'"),
+             ({"delta": 200.0, "delta_unit": "d"}, ["--delta", "200", "--delta-unit", "d"],
+              "a delta in degrees must be within (0, 180]", "--delta 90", "delta=90"),
+             ({"t_max_diff_s": -1.0}, ["--t-max-diff", "-1"], "must be >= 0", "--t-max-diff", "t_max_diff_s")]
+    for kwargs, flags, problem, cli_spelling, py_spelling in cases:
+        r = cli("eval", "--gt", gt, "--est", est, *flags, check=False)
+        assert r.returncode != 0 and problem in r.stderr and cli_spelling in r.stderr, (flags, r.stderr)
+        with pytest.raises(slambox.InputError) as e:
+            slambox.evaluate(gt, est, **kwargs)
+        assert problem in str(e.value) and py_spelling in str(e.value) and "--" not in str(e.value), kwargs

@@ -25,9 +25,9 @@ TEST_P(BuiltinScenarioPath, DrivenWithoutCollision) {
               report.distance_m, report.mover_contacts);
 }
 
-/// The built-in scenarios of DESIGN.md.
+/// The built-in scenarios of DESIGN.md, and `office` (its world a ROS map image).
 std::vector<std::string> Names() {
-  return {"loop", "tunnel", "landmarks", "forest", "maze", "dynamic", "symmetric"};
+  return {"loop", "tunnel", "landmarks", "forest", "maze", "dynamic", "symmetric", "office"};
 }
 
 INSTANTIATE_TEST_SUITE_P(All, BuiltinScenarioPath, ::testing::ValuesIn(Names()),

@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.hpp"
 #include "core/ros_map.hpp"
+#include "core/stream_io.hpp"
 #include "sim/box2d_world.hpp"
 #include "sim/grid_ray_cast.hpp"
 #include "sim/scenario.hpp"
@@ -135,15 +137,47 @@ TEST_F(OccupancyMapWorld, PosesInOccupiedCellsAreErrors) {
   EXPECT_NE(e.find("room_scenario.yaml:4"), std::string::npos) << e;
 }
 
-TEST(OccupancyMapExample, CommittedOfficeMapScenarioDrivesWithoutTouchingAWall) {
-  const auto s = LoadScenario(std::string(SLAMBOX_SOURCE_DIR) + "/scenarios/maps/office_from_map.yaml");
-  EXPECT_EQ(s.occupancy_grid.width, 320);
-  EXPECT_EQ(s.occupancy_grid.height, 200);
+TEST(OccupancyMapExample, BuiltinOfficeIsTheCommittedMapImage) {
+  const fs::path dir = fs::temp_directory_path() / ("slambox_office_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  auto WriteTemp = [&](const std::string& name, const std::string& text) {
+    std::ofstream((dir / name).string()) << text;
+    return (dir / name).string();
+  };
+  // The built-in reads the embedded copies of scenarios/maps/office_map.{yaml,pgm}; the file
+  // scenarios/office.yaml reads them from disk: the same grid, the same stream.
+  const auto builtin = LoadScenario("office");
+  const auto file = LoadScenario(std::string(SLAMBOX_SOURCE_DIR) + "/scenarios/office.yaml");
+  EXPECT_EQ(builtin.source, "builtin:office");
+  EXPECT_EQ(builtin.occupancy_map, "builtin:maps/office_map.yaml");
+  EXPECT_EQ(file.occupancy_map, std::string(SLAMBOX_SOURCE_DIR) + "/scenarios/maps/office_map.yaml");
+  EXPECT_EQ(builtin.occupancy_grid.width, 320);
+  EXPECT_EQ(builtin.occupancy_grid.height, 200);
+  EXPECT_EQ(builtin.occupancy_grid.cells, file.occupancy_grid.cells);
+  EXPECT_EQ(builtin.occupancy_grid.origin_m, file.occupancy_grid.origin_m);
+  EXPECT_GT(std::count(builtin.occupancy_grid.cells.begin(), builtin.occupancy_grid.cells.end(), 100), 1000);
   SimulationReport report;
-  const Stream stream = Simulate(s, 0, {}, &report);
-  EXPECT_NEAR(report.distance_m, 2 * 60.0, 0.5) << "two laps of the 60 m corridor loop";
+  Scenario short_builtin = builtin, short_file = file;
+  short_builtin.duration_s = short_file.duration_s = 20.0;
+  Stream from_builtin = Simulate(short_builtin, 3, {}, &report), from_file = Simulate(short_file, 3);
+  from_file.header.scenario_yaml = from_builtin.header.scenario_yaml;  // it names the map's path
+  EXPECT_EQ(SerializeStream(from_builtin), SerializeStream(from_file));
   EXPECT_EQ(report.wall_contacts, 0);
-  EXPECT_TRUE(report.path_completed);
+  // `scenario show`'s path (builtin:maps/...) reads back from any file, and a wrong name says what exists.
+  const auto shown = WriteTemp("shown.yaml", ScenarioToYaml(builtin));
+  EXPECT_EQ(LoadScenario(shown).occupancy_grid.cells, builtin.occupancy_grid.cells);
+  std::string text = ScenarioToYaml(builtin);
+  text.replace(text.find("builtin:maps/office_map.yaml"), 28, "builtin:maps/no_such_map.yaml");
+  try {
+    LoadScenario(WriteTemp("bad.yaml", text));
+    ADD_FAILURE() << "a missing built-in map file was accepted";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("no such built-in map file"), std::string::npos) << m;
+    EXPECT_NE(m.find("maps/office_map.yaml"), std::string::npos) << m;
+    EXPECT_NE(m.find("bad.yaml:"), std::string::npos) << m;
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

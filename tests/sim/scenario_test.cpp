@@ -13,7 +13,7 @@
 namespace slambox {
 namespace {
 
-const std::vector<std::string> kBuiltins = {"dynamic", "forest", "landmarks", "loop", "maze", "symmetric", "tunnel"};
+const std::vector<std::string> kBuiltins = {"dynamic", "forest", "landmarks", "loop", "maze", "office", "symmetric", "tunnel"};
 
 /// Metres driven: start -> path, then (laps - 1) more times around the closed path.
 double PathLength(const RobotSpec& r) {
