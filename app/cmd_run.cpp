@@ -27,6 +27,8 @@ void AddRunCommand(CLI::App& app) {
       ->delimiter(',');
   cmd->add_flag("--no-figures", [request](std::int64_t) { request->figures = false; }, "skip figures");
   cmd->add_flag("-q,--quiet", request->quiet, "no progress on stderr");
+  cmd->add_flag("--sweep-pictures", request->pictures, "draw the sweep report's pictures (DIR/pictures/)")
+      ->group("");  // for sweep workers run as --worker-exe
   cmd->add_option("--relations", request->relations_path,
                   "Kümmerle relations file of the log (t_i t_j dx dy dz roll pitch dtheta): relation_* on it");
   auto inline_modules = std::make_shared<std::vector<std::string>>();

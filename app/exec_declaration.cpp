@@ -128,6 +128,8 @@ ExecDeclaration LoadExecDeclaration(const std::string& path) {
       } else if (key == "idle_timeout_s") {
         d.idle_timeout_s = v.as<double>();
         if (!(d.idle_timeout_s > 0)) fail(v, "'idle_timeout_s' must be positive", "write e.g. idle_timeout_s: 30");
+      } else if (key == "baseline") {
+        d.baseline = v.as<bool>();
       } else if (key == "params") {
         if (!v.IsMap()) fail(v, "'params' must be a map NAME: {type, default, ...}", fix);
         for (const auto& pkv : v) {
@@ -159,7 +161,7 @@ ExecDeclaration LoadExecDeclaration(const std::string& path) {
           d.params.push_back(p);
         }
       } else {
-        fail(kv.first, "unknown key '" + key + "'", "use version, description, command, needs, idle_timeout_s, params");
+        fail(kv.first, "unknown key '" + key + "'", "use version, description, command, needs, idle_timeout_s, baseline, params");
       }
     }
   } catch (const YAML::Exception& e) {

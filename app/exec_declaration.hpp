@@ -28,6 +28,7 @@ struct ExecDeclaration {
   std::string working_dir;           ///< the declaration file's folder
   SensorNeeds needs;
   double idle_timeout_s = 30.0;  ///< [s] child killed after this long without progress
+  bool baseline = false;  ///< `baseline: true`: a reference, not a method (ModuleInfo::baseline)
   std::vector<ExecParam> params;
 };
 

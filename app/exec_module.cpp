@@ -123,6 +123,7 @@ ModuleInfo ExecModuleInfo(const ExecDeclaration& declaration) {
   info.name = declaration.name;
   info.description = declaration.description.empty() ? "exec module " + declaration.file : declaration.description;
   info.needs = declaration.needs;
+  info.baseline = declaration.baseline;
   info.params = [declaration] {
     std::vector<ParamInfo> list;
     BindExecParams(declaration, nullptr, &list);

@@ -79,12 +79,13 @@ void WriteKittiPair(const fs::path& dir, const std::string& name, const std::vec
 }  // namespace
 
 Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream, const EvalOptions& options,
-                          const std::string& dir, const std::vector<TrajectoryFormat>& formats) {
+                          const std::string& dir, const std::vector<TrajectoryFormat>& formats,
+                          std::optional<Estimate>* kept) {
   ModuleRun run = ReplayAndScore(module, stream, options);
   if (!run.estimate) return run.metrics;
   const fs::path d(dir);
   try {
-    const Estimate written = FiniteEstimate(*run.estimate);  // no NaN in a file (diverged says where)
+    Estimate written = FiniteEstimate(*run.estimate);  // no NaN in a file (diverged says where)
     WriteTum((d / (name + ".tum")).string(), Poses(written));
     if (std::count(formats.begin(), formats.end(), TrajectoryFormat::kKitti))
       WriteKittiPair(d, name, stream.groundtruth, Poses(written));
@@ -92,6 +93,7 @@ Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Str
     if (written.grid && written.grid->width > 0 && written.grid->height > 0)
       WriteRosMap((d / "maps" / (name + ".yaml")).string(), *written.grid);
     WriteJson(d / "series" / (name + ".json"), ToJson(run.series));
+    if (kept) *kept = std::move(written);
   } catch (const std::exception& e) {  // as a failing module: the others go on
     run.metrics = UnscoredMetrics(RunStatus::kFailed, e.what());
   }
@@ -121,6 +123,20 @@ json RunAndWrite(const RunRequest& request) {
   if (stream.header.time_origin_s) doc["time_origin_s"] = *stream.header.time_origin_s;
   if (!request.relations_path.empty()) doc["relations_file"] = request.relations_path;
   doc["algorithms"] = json::object();
+  // What the registry says of each module (ModuleInfo), e.g. which are baselines: the
+  // figures style those by this flag, never by a name.
+  doc["modules"] = json::object();
+  for (const auto& name : names) doc["modules"][name] = {{"baseline", FindModule(name).baseline}};
+  // The sweep report's pictures are drawn from this run in memory, after metrics.json.
+  render::RunFolder pictures;
+  if (request.pictures) {
+    pictures.dir = dir.string();
+    pictures.scenario = stream.header.scenario_name;
+    pictures.seed = static_cast<long>(stream.header.seed);
+    pictures.world = stream.header.world;
+    pictures.has_world = render::WorldHasGeometry(stream.header.world);
+    pictures.groundtruth = stream.groundtruth;
+  }
   WriteTum((dir / "groundtruth.tum").string(), stream.groundtruth);
   WriteJson(dir / "world.json", {{"scenario", stream.header.scenario_name},
                                  {"seed", stream.header.seed},
@@ -132,14 +148,33 @@ json RunAndWrite(const RunRequest& request) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
-    const Metrics metrics = RunModuleAndWrite(*modules[i], name, stream, options, dir.string(), request.formats);
+    std::optional<Estimate> estimate;
+    const Metrics metrics = RunModuleAndWrite(*modules[i], name, stream, options, dir.string(), request.formats,
+                                              request.pictures ? &estimate : nullptr);
     modules[i].reset();
     doc["algorithms"][name] = ToJson(metrics);
+    if (request.pictures) {
+      render::AlgorithmResult a{.name = name, .metrics = metrics, .trajectory = {}, .estimate = std::move(estimate),
+                                .series = std::nullopt, .baseline = FindModule(name).baseline};
+      if (a.estimate) a.trajectory = Poses(*a.estimate);
+      pictures.algorithms.push_back(std::move(a));
+    }
     if (progress) std::cerr << " " << RunStatusName(metrics.status) << "\n";
   }
   doc["peak_rss_mb"] = PeakRssMb();
   WriteJson(dir / "metrics.json", doc);
   if (request.figures) Render().run_figures(dir.string());
+  if (request.pictures) {
+    // metrics.json's order (the run folder's, so colours match the run's own figures).
+    std::sort(pictures.algorithms.begin(), pictures.algorithms.end(),
+              [](const auto& a, const auto& b) { return a.name < b.name; });
+    pictures.metrics = doc;
+    try {
+      Render().run_pictures(pictures, dir.string());
+    } catch (const std::exception& e) {  // the run's results stand; the report says a picture is missing
+      std::cerr << "slambox: warning: no pictures for " << dir.string() << ": " << e.what() << "\n";
+    }
+  }
   return doc;
 }
 

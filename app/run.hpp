@@ -11,6 +11,7 @@
 // A module that throws or diverges is recorded with its status; the others go on.
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ struct RunRequest {
   std::vector<std::string> plugins;     ///< module plugins to load first (`--plugin PATH.so`)
   std::string output_dir;
   bool figures = true;
+  /// The sweep report's pictures (DIR/pictures/, render/run_pictures.hpp), drawn from the
+  /// run in memory after metrics.json is written; a drawing error is a warning.
+  bool pictures = false;
   bool quiet = false;  ///< no progress lines on stderr
   bool skip_unavailable = false;  ///< skip named modules whose sensors the stream lacks
   /// Trajectory files besides the TUM ones (always written, DESIGN.md).
@@ -47,10 +51,11 @@ struct RunRequest {
 /// Replays `stream` to `module`, scores it and writes DIR/NAME.tum, DIR/estimates/NAME.json
 /// (both of FiniteEstimate: no NaN in a file), DIR/series/NAME.json, DIR/maps/NAME.yaml for a
 /// grid and the `formats`' files; returns its metrics (status ok, diverged or failed with a
-/// reason). Never throws.
+/// reason). Never throws. With `kept`, the estimate as written (FiniteEstimate) is moved there.
 Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream,
                           const EvalOptions& options, const std::string& dir,
-                          const std::vector<TrajectoryFormat>& formats = {TrajectoryFormat::kTum});
+                          const std::vector<TrajectoryFormat>& formats = {TrajectoryFormat::kTum},
+                          std::optional<Estimate>* kept = nullptr);
 
 /// Runs and writes the run folder; returns the metrics.json document.
 nlohmann::json RunAndWrite(const RunRequest& request);

@@ -51,6 +51,7 @@ pid_t Launch(const SweepRun& run, const ExecOptions& o) {
   fs::create_directories(dir);
   std::vector<std::string> args = {o.worker_exe, "run", run.scenario, "--algo", Join(o.algorithms, ","), "-o", dir,
                                    "--no-figures", "-q", "--skip-unavailable"};
+  if (o.pictures) args.push_back("--sweep-pictures");
   if (!run.is_stream) args.insert(args.end(), {"--seed", std::to_string(run.seed)});
   if (!run.relations.empty()) args.insert(args.end(), {"--relations", run.relations});
   for (const auto& s : run.sets) {
@@ -90,6 +91,7 @@ pid_t Launch(const SweepRun& run, const ExecOptions& o) {
       request.algorithms = o.algorithms;
       request.output_dir = dir;
       request.figures = false;
+      request.pictures = o.pictures;
       request.quiet = true;
       request.skip_unavailable = true;
       int code = 0;

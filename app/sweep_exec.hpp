@@ -32,6 +32,9 @@ struct ExecOptions {
   double timeout_s = 1800.0;
   bool progress_bar = false;  ///< a redrawn bar on a terminal; plain log lines otherwise
   bool quiet = false;
+  /// Each run draws the report's pictures of itself (RunRequest::pictures); the renderer
+  /// should be loaded before ExecuteRuns, so the forked workers inherit it.
+  bool pictures = false;
   ForkHooks fork_hooks;
 };
 

@@ -57,8 +57,19 @@ void Validate(const SweepSpec& spec, const std::vector<SweepRun>& runs) {
 void WriteManifest(const std::string& dir, const SweepSpec& spec) {
   nlohmann::json grid = nlohmann::json::object();
   for (const auto& [k, v] : spec.grid) grid[k] = v;
-  const nlohmann::json manifest = {
-      {"scenarios", spec.scenarios}, {"algorithms", spec.algorithms}, {"seeds", spec.seeds}, {"grid", grid}};
+  // Which modules are baselines (ModuleInfo::baseline): the figures style them by this flag.
+  nlohmann::json modules = nlohmann::json::object();
+  for (const auto& name : spec.algorithms) {
+    if (name == "all") {
+      for (const auto& m : AllModules()) modules[m.name] = {{"baseline", m.baseline}};
+    } else {
+      const ModuleInfo& m = FindModule(name);  // by its own name (exec:PATH.yaml runs as exec:STEM)
+      modules[m.name] = {{"baseline", m.baseline}};
+    }
+  }
+  const nlohmann::json manifest = {{"scenarios", spec.scenarios}, {"algorithms", spec.algorithms},
+                                   {"seeds", spec.seeds},         {"grid", grid},
+                                   {"interval", IntervalMethodName(spec.interval)}, {"modules", modules}};
   WriteFileAtomic(dir + "/sweep.json", manifest.dump(1) + "\n");
 }
 
@@ -107,6 +118,8 @@ SweepOutcome ExecuteSweep(const SweepSpec& spec, const SweepRunOptions& a) {
   o.progress_bar = a.progress_bar;
   o.quiet = a.quiet;
   o.fork_hooks = a.fork_hooks;
+  o.pictures = a.figures;
+  if (o.pictures) Render();  // loaded once here: the forked workers inherit it
   SweepOutcome outcome;
   outcome.runs = ExecuteRuns(mine, o);
   if (a.shard.empty()) {

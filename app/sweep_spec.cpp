@@ -104,12 +104,12 @@ SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
   if (!root.IsMap()) throw InputError(path, 1, "a sweep file is a YAML map", "see DESIGN.md: scenarios, algorithms, seeds, grid");
   SweepSpec spec;
   spec.source = path;
-  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations", "plugins", "check"};
+  const std::set<std::string> known = {"scenarios", "algorithms", "seeds", "grid", "set", "timeout_s", "relations", "plugins", "check", "interval"};
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (!known.count(key))
       throw InputError(path, Line(kv.first), "unknown key '" + key + "'",
-                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations, plugins, check");
+                       "use scenarios, algorithms, seeds, grid, set, timeout_s, relations, plugins, check, interval");
   }
   for (const char* required : {"scenarios", "algorithms", "seeds"})
     if (!root[required]) throw InputError(path, 1, std::string("missing '") + required + "'", std::string("add ") + required + ":");
@@ -154,6 +154,13 @@ SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
       spec.timeout_s = -1;
     }
     if (!(spec.timeout_s > 0)) throw InputError(path, Line(t), "timeout_s must be a positive number", "write timeout_s: 600");
+  }
+  if (const YAML::Node iv = root["interval"]) {
+    const std::string word = iv.IsScalar() ? iv.Scalar() : "";
+    const auto method = IntervalMethodFromName(word);
+    if (method) spec.interval = *method;
+    else throw InputError(path, Line(iv), "interval must be auto, t or bootstrap, not '" + word + "'",
+                       "write interval: auto (t from 10 seeds, bootstrap below), t or bootstrap");
   }
   if (const YAML::Node rel = root["relations"]) {
     if (!rel.IsMap())

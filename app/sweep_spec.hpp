@@ -9,6 +9,8 @@
 //   timeout_s: 600                     # optional: a run taking longer is killed, recorded failed
 //   plugins: [build/libmy_plugin.so]   # optional: module plugins (paths relative to this file)
 //   relations: {intel.stream: intel.relations}  # optional: Kümmerle relations per scenario entry
+//   interval: auto                     # optional: summary.md's 95 % interval of a mean: auto
+//                                      # (Student-t from 10 seeds, percentile bootstrap below), t, bootstrap
 // A run = one scenario x one grid point x one seed; it simulates its stream once and
 // replays it to every algorithm. A `scenarios` entry may be a stream file (e.g. a
 // converted log): it is already simulated, so it is run once per grid point (seed 0 in
@@ -17,6 +19,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "eval/statistics.hpp"
 
 namespace slambox {
 
@@ -32,6 +36,7 @@ struct SweepSpec {
   std::vector<std::pair<std::string, std::string>> relations;  ///< scenario entry -> relations file
   /// `check:` metric -> (relative, absolute) tolerance for `sweep --check` (else the flags').
   std::vector<std::pair<std::string, std::pair<double, double>>> check_tolerances;
+  IntervalMethod interval = IntervalMethod::kAuto;  ///< `interval:` (summary.md, report, figures)
 };
 
 struct SweepRun {

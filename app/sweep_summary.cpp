@@ -14,32 +14,12 @@
 #include "core/json_io.hpp"
 #include "eval/metrics.hpp"
 #include "eval/statistics.hpp"
+#include "eval/summary_tables.hpp"
 
 namespace slambox {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-using CellValues = std::map<CellKey, std::map<std::string, std::vector<double>>>;
-
-// Per cell, the values over seeds of every metric summary.md shows or --check compares
-// (rows with status ok, empty cells left out).
-CellValues CellMetricValues(const ResultsTable& t) {
-  CellValues cells;
-  for (const ResultRow& row : t.rows) {
-    auto& cell = cells[CellOf(row)];
-    if (row.status != "ok") continue;
-    for (const auto& [key, v] : row.metrics) {
-      const MetricDescriptor* d = FindMetric(key);
-      if (!d || !(d->checked || d->summary_column >= 0) || std::isnan(v)) continue;
-      cell[key].push_back(v);
-    }
-  }
-  return cells;
-}
-
-}  // namespace
 
 void WriteSweepSummary(const std::string& out_dir, const SweepSpec& spec, const std::vector<SweepRun>& runs) {
   // Gather each run's per-algorithm metrics (or its failure).
@@ -99,59 +79,18 @@ void WriteSweepSummary(const std::string& out_dir, const SweepSpec& spec, const 
 }
 
 std::string SummaryMarkdown(const ResultsTable& table, const SweepSpec& spec, std::size_t runs, int missing) {
-  const CellValues cells = CellMetricValues(table);
-  const std::vector<const MetricDescriptor*> shown = SummaryMetrics();
-  std::map<CellKey, std::pair<int, int>> counts;  // cell -> (ok, all runs)
-  for (const auto& row : table.rows) {
-    auto& [ok, all] = counts[CellOf(row)];
-    ++all;
-    ok += row.status == "ok";
-  }
   std::ostringstream md;
   md << "# Sweep summary\n\n" << runs << " runs (" << spec.scenarios.size() << " scenarios x "
      << runs / std::max<std::size_t>(1, spec.scenarios.size() * spec.seeds.size()) << " grid points x "
      << spec.seeds.size() << " seeds)";
   if (missing) md << "; **" << missing << " runs have no result yet** (resume the sweep)";
-  md << ". Cells: mean ± std over seeds, median, 95% t-interval of the mean. Best mean per scenario in bold.\n";
-  for (const auto& scenario : spec.scenarios) {
-    md << "\n## " << scenario << "\n\n| algorithm | parameters | ok/runs |";
-    for (const MetricDescriptor* d : shown) md << " " << d->label << " |";
-    md << "\n|---|---|---|";
-    for (std::size_t i = 0; i < shown.size(); ++i) md << "---|";
-    md << "\n";
-    std::map<std::string, double> best;  // metric -> best mean in this scenario
-    for (const auto& [key, values] : cells) {
-      if (key.scenario != scenario) continue;
-      for (const MetricDescriptor* d : shown) {
-        const auto it = values.find(d->key);
-        if (d->better == Better::kNeither || it == values.end() || it->second.empty()) continue;
-        const double m = Summarize(it->second).mean;
-        const bool lower = d->better == Better::kLower;
-        if (!best.count(d->key) || (lower ? m < best[d->key] : m > best[d->key])) best[d->key] = m;
-      }
-    }
-    for (const auto& [key, values] : cells) {
-      if (key.scenario != scenario) continue;
-      const auto [ok, all] = counts[key];
-      std::string params;
-      for (const auto& [k, v] : key.grid) params += (params.empty() ? "" : ", ") + k + "=" + v;
-      md << "| " << key.algorithm << " | " << (params.empty() ? "–" : params) << " | " << ok << "/" << all << " |";
-      for (const MetricDescriptor* d : shown) {
-        const auto it = values.find(d->key);
-        if (it == values.end() || it->second.empty()) {
-          md << " – |";
-          continue;
-        }
-        const SampleSummary s = Summarize(it->second);
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%.4g ± %.2g (med %.4g, CI %.4g–%.4g)", s.mean, s.std, s.median,
-                      s.mean - s.ci95_half, s.mean + s.ci95_half);
-        const bool bold = best.count(d->key) && s.mean == best[d->key];
-        md << " " << (bold ? "**" : "") << buf << (bold ? "**" : "") << " |";
-      }
-      md << "\n";
-    }
+  md << ". " << SummaryCaption(spec.interval);
+  if (!table.grid_keys.empty()) {
+    md << "Swept (the `parameters` column names each by its last part):";
+    for (const auto& k : table.grid_keys) md << " `" << k << "`";
+    md << ".\n";
   }
+  for (const auto& scenario : ScenariosOf(table)) md << "\n" << ScenarioSummary(table, scenario, spec.interval);
   return md.str();
 }
 

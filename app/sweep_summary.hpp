@@ -1,9 +1,10 @@
 #pragma once
 // Sweep results: DIR/results.csv (one row per run and algorithm, deterministic metrics
 // only, so a resumed or parallel sweep gives a byte-identical file), DIR/timing.csv
-// (run times, which vary between machines and runs), DIR/summary.md (per cell: mean,
-// std, median and 95% t-interval over seeds; the best mean per scenario in bold). The table
-// itself is eval/results_table; the regression check is app/sweep_check.
+// (run times, which vary between machines and runs), DIR/summary.md (per cell: mean ±
+// std over seeds, the best mean per scenario in bold; medians and 95 % intervals in a
+// collapsed table: eval/summary_tables). The table itself is eval/results_table; the
+// regression check is app/sweep_check.
 #include <string>
 #include <vector>
 

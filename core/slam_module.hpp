@@ -41,6 +41,9 @@ struct ModuleInfo {
   std::function<std::vector<ParamInfo>()> params;
   /// Builds the module with `--set algo.NAME.*` overrides applied; throws InputError.
   std::function<std::unique_ptr<SlamModule>(const ParamOverrides&)> create;
+  /// A reference to compare against, not a method being judged (dead reckoning): written
+  /// to metrics.json's `modules` and sweep.json, and drawn orange and dashed.
+  bool baseline = false;
 };
 
 /// ModuleInfo for a module `Module(const Config&)` whose fields `bind` names.

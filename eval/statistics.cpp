@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
+#include <tuple>
+#include <utility>
 
 namespace slambox {
 
@@ -81,6 +85,92 @@ SampleSummary Summarize(std::vector<double> v) {
     }
   }
   return s;
+}
+
+const char* IntervalMethodName(IntervalMethod method) {
+  switch (method) {
+    case IntervalMethod::kAuto: return "auto";
+    case IntervalMethod::kStudentT: return "t";
+    case IntervalMethod::kBootstrap: return "bootstrap";
+  }
+  return "?";
+}
+
+std::optional<IntervalMethod> IntervalMethodFromName(const std::string& word) {
+  for (IntervalMethod m : {IntervalMethod::kAuto, IntervalMethod::kStudentT, IntervalMethod::kBootstrap})
+    if (word == IntervalMethodName(m)) return m;
+  return std::nullopt;
+}
+
+IntervalMethod ResolveInterval(IntervalMethod method, int n) {
+  if (method != IntervalMethod::kAuto) return method;
+  return n >= 10 ? IntervalMethod::kStudentT : IntervalMethod::kBootstrap;
+}
+
+namespace {
+
+// Every multiset of n draws from v (counts c_i summing to n) with probability
+// n! / (prod c_i!) / n^n: the exact bootstrap distribution of the mean.
+void EnumerateResamples(const std::vector<double>& v, size_t i, int left, double sum, double log_weight,
+                        std::vector<std::pair<double, double>>& out) {
+  const int n = static_cast<int>(v.size());
+  if (i + 1 == v.size()) {
+    const double w = log_weight - std::lgamma(left + 1.0);
+    out.push_back({(sum + left * v[i]) / n, w});
+    return;
+  }
+  for (int c = 0; c <= left; ++c)
+    EnumerateResamples(v, i + 1, left - c, sum + c * v[i], log_weight - std::lgamma(c + 1.0), out);
+}
+
+std::pair<double, double> BootstrapPercentiles(const std::vector<double>& v) {
+  const int n = static_cast<int>(v.size());
+  if (n <= 9) {
+    std::vector<std::pair<double, double>> means;  // (mean, log weight without n! / n^n)
+    EnumerateResamples(v, 0, n, 0.0, 0.0, means);
+    std::sort(means.begin(), means.end());
+    const double log_scale = std::lgamma(n + 1.0) - n * std::log(static_cast<double>(n));
+    // The smallest mean whose cumulative probability reaches 2.5 % (97.5 %): the inverse CDF.
+    double cum = 0.0, lo = NAN, hi = NAN;
+    for (const auto& [m, lw] : means) {
+      cum += std::exp(lw + log_scale);
+      if (std::isnan(lo) && cum >= 0.025 - 1e-12) lo = m;
+      if (std::isnan(hi) && cum >= 0.975 - 1e-12) hi = m;
+    }
+    return {lo, std::isnan(hi) ? means.back().first : hi};
+  }
+  constexpr int kResamples = 20000;
+  std::mt19937_64 rng(0x5eed);  // fixed: the same values give the same interval
+  std::vector<double> means(kResamples);
+  for (double& m : means) {
+    double sum = 0.0;
+    for (int k = 0; k < n; ++k) sum += v[rng() % static_cast<std::uint64_t>(n)];
+    m = sum / n;
+  }
+  return {Percentile(means, 2.5), Percentile(means, 97.5)};
+}
+
+}  // namespace
+
+MeanInterval IntervalOfMean(std::vector<double> v, IntervalMethod method, bool nonnegative) {
+  std::erase_if(v, [](double x) { return std::isnan(x); });
+  std::sort(v.begin(), v.end());  // the result does not depend on the order of the runs
+  MeanInterval out;
+  out.n = static_cast<int>(v.size());
+  out.method = ResolveInterval(method, out.n);
+  if (v.empty()) return out;
+  if (out.method == IntervalMethod::kBootstrap) {
+    std::tie(out.lo, out.hi) = BootstrapPercentiles(v);
+    return out;
+  }
+  const SampleSummary s = Summarize(v);
+  out.lo = s.mean - s.ci95_half;
+  out.hi = s.mean + s.ci95_half;
+  if (nonnegative && out.lo < 0.0) {
+    out.lo = 0.0;
+    out.clipped = true;
+  }
+  return out;
 }
 
 double StudentT975(int dof) {

@@ -312,9 +312,9 @@ Image Canvas::Finish() {
 
 std::string Canvas::Svg() const { return svg_ + (clip_open_ ? "</g>\n" : "") + "</svg>\n"; }
 
-void SaveFigure(Canvas& canvas, const std::string& path_stem) {
+void SaveFigure(Canvas& canvas, const std::string& path_stem, bool svg) {
   WritePng(path_stem + ".png", canvas.Finish());
-  WriteFileAtomic(path_stem + ".svg", canvas.Svg());
+  if (svg) WriteFileAtomic(path_stem + ".svg", canvas.Svg());
 }
 
 }  // namespace slambox::render

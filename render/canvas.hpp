@@ -80,7 +80,7 @@ class Canvas {
   bool clip_open_ = false;
 };
 
-/// Writes `canvas` to `path_stem`.png and `path_stem`.svg (atomically).
-void SaveFigure(Canvas& canvas, const std::string& path_stem);
+/// Writes `canvas` to `path_stem`.png and, unless `svg` is false, `path_stem`.svg (atomically).
+void SaveFigure(Canvas& canvas, const std::string& path_stem, bool svg = true);
 
 }  // namespace slambox::render

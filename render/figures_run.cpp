@@ -3,20 +3,11 @@
 #include <filesystem>
 
 #include "render/figures_run_parts.hpp"
+#include "render/run_pictures.hpp"
 
 namespace slambox::render {
 
 namespace fs = std::filesystem;
-
-namespace {
-/// File-name-safe form of a module name ("icp-poseslam" stays, '/' etc. become '_').
-std::string Safe(const std::string& name) {
-  std::string s = name;
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
-  return s;
-}
-}  // namespace
 
 std::vector<std::string> RenderRunFiguresListed(const std::string& run_dir) {
   const RunFolder run = ReadRunFolder(run_dir);
@@ -30,7 +21,7 @@ std::vector<std::string> RenderRunFiguresListed(const std::string& run_dir) {
   emit("error_distance", [&](const std::string& s) { return DrawErrorFigure(run, s); });
   emit("nees", [&](const std::string& s) { return DrawNeesFigure(run, s); });
   for (size_t i = 0; i < run.algorithms.size(); ++i) {
-    const std::string n = Safe(run.algorithms[i].name);
+    const std::string n = SafeFileName(run.algorithms[i].name);
     emit("map_" + n, [&](const std::string& s) { return DrawMapFigure(run, i, s); });
     emit("uncertainty_" + n, [&](const std::string& s) { return DrawUncertaintyFigure(run, i, s); });
     emit("particles_" + n, [&](const std::string& s) { return DrawParticlesFigure(run, i, s); });

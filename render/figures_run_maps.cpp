@@ -62,7 +62,8 @@ void DrawGrid(Canvas& c, const Axes& axes, const OccupancyGrid& g) {
 
 }  // namespace
 
-bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of, double now_s) {
+bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const RunFolder* extent_of, double now_s,
+                            const FigureOutput& out) {
   if (run.groundtruth.empty() && std::none_of(run.algorithms.begin(), run.algorithms.end(),
                                               [](const auto& a) { return !a.trajectory.empty(); }))
     return false;
@@ -76,7 +77,7 @@ bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const
     for (const auto& e : WorldLegend(run.world)) legend.push_back(e);
 
   const auto [lo, hi] = RunExtent(extent_of ? *extent_of : run);
-  WorldFigure fig(kFigureWidthPx, WorldFigureHeight(kFigureWidthPx, lo, hi, legend), lo, hi, legend);
+  WorldFigure fig(out.width_px, WorldFigureHeight(out.width_px, lo, hi, legend), lo, hi, legend, {}, out.supersample);
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, false);
   for (size_t i = 0; i < run.algorithms.size(); ++i)
     DrawPath(fig.canvas, fig.axes, run.algorithms[i].trajectory, AlgorithmStyle(run, i).stroke);
@@ -93,11 +94,11 @@ bool DrawTrajectoriesFigure(const RunFolder& run, const std::string& stem, const
   if (!start_src.empty())
     DrawMarker(fig.canvas, fig.axes.ToPixel(start_src.front().pose.translation()), MarkerShape::kTriangle, 18.0, color::kYellow);
   fig.Finish(RunTitle(run, "Trajectories") + (now_s >= 0 ? ", " + FormatSeconds(now_s) : ""), legend);
-  SaveFigure(fig.canvas, stem);
+  SaveFigure(fig.canvas, stem, out.svg);
   return true;
 }
 
-bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem) {
+bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem, const FigureOutput& out) {
   const AlgorithmResult& a = run.algorithms.at(algo);
   if (!a.estimate) return false;
   const Estimate& e = *a.estimate;
@@ -119,7 +120,7 @@ bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem) {
   legend.push_back({.label = "estimated path", .line = {c.WithAlpha(0.45), 1.5, {}}});
 
   const auto [lo, hi] = RunExtent(run, static_cast<int>(algo));
-  WorldFigure fig(kFigureWidthPx, WorldFigureHeight(kFigureWidthPx, lo, hi, legend), lo, hi, legend);
+  WorldFigure fig(out.width_px, WorldFigureHeight(out.width_px, lo, hi, legend), lo, hi, legend, {}, out.supersample);
   if (grid) DrawGrid(fig.canvas, fig.axes, *e.grid);
   if (run.has_world) DrawWorld(fig.canvas, fig.axes, run.world, true);
   DrawPath(fig.canvas, fig.axes, a.trajectory.empty() ? PosesOf(e) : a.trajectory, {c.WithAlpha(0.45), 1.5, {}});
@@ -141,7 +142,7 @@ bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem) {
     for (const auto& l : run.world.landmarks)
       DrawMarker(fig.canvas, fig.axes.ToPixel(l.position), MarkerShape::kRing, 12.0, color::kBlack);
   fig.Finish(RunTitle(run, "Map built by " + a.name), legend);
-  SaveFigure(fig.canvas, stem);
+  SaveFigure(fig.canvas, stem, out.svg);
   return true;
 }
 

@@ -84,7 +84,7 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
     for (size_t a = 0; a < sw.algorithms.size(); ++a) {
       const SampleSummary& g = stats[s][a];
       if (g.n == 0) continue;
-      const Rgba col = ModuleColor(sw.algorithms, a);
+      const Rgba col = ModuleColor(sw.baseline, a);
       const double x = gx + (a - 0.5 * (sw.algorithms.size() - 1)) * box_w * 1.15;
       auto Y = [&](double v) { return axes.ToPixel(0, v).y(); };
       const Stroke line{col, 1.6, {}};
@@ -116,7 +116,7 @@ bool BoxFigure(const SweepFolder& sw, const std::string& metric, const std::stri
          std::string(sw.results.grid_keys.empty() ? ")" : " and grid cells)"), {.size_px = kStyle.title_px, .h = HAlign::kCenter, .weight = FontWeight::kBold});
   std::vector<LegendEntry> legend;
   for (size_t a = 0; a < sw.algorithms.size(); ++a)
-    legend.push_back({.label = sw.algorithms[a], .line = {{}, 0.0, {}}, .patch = ModuleColor(sw.algorithms, a).WithAlpha(0.5)});
+    legend.push_back({.label = sw.algorithms[a], .line = {{}, 0.0, {}}, .patch = ModuleColor(sw.baseline, a).WithAlpha(0.5)});
   DrawLegendAt(c, area.right + 14, area.top, legend);
   SaveFigure(c, stem);
   return true;
@@ -165,19 +165,21 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
   const Levels lv = LevelsOf(sw, key);
   const std::vector<double>& levels = lv.x;
   if (levels.size() < 2) return false;
-  struct Curve { std::string label; Rgba color; std::vector<SampleSummary> at; };
+  struct Curve { std::string label; Rgba color; std::vector<SampleSummary> at; std::vector<MeanInterval> ci; };
   std::vector<Curve> curves;
   double lo = INFINITY, hi = -INFINITY;
   for (size_t s = 0; s < sw.scenarios.size(); ++s)
     for (size_t a = 0; a < sw.algorithms.size(); ++a) {
       Curve cu{sw.algorithms[a] + (sw.scenarios.size() > 1 ? " / " + sw.scenarios[s] : ""),
-               sw.scenarios.size() > 1 ? SeriesColor(static_cast<int>(a + s * sw.algorithms.size())) : ModuleColor(sw.algorithms, a), {}};
+               sw.scenarios.size() > 1 ? SeriesColor(static_cast<int>(a + s * sw.algorithms.size())) : ModuleColor(sw.baseline, a), {}};
       for (const std::string& level : lv.text) {
-        cu.at.push_back(Summarize(Values(sw, metric, [&](const ResultRow& r) {
+        const std::vector<double> v = Values(sw, metric, [&](const ResultRow& r) {
           return r.scenario == sw.scenarios[s] && r.algorithm == sw.algorithms[a] && MatchesLevel(r, key, level);
-        })));
-        const SampleSummary& g = cu.at.back();
-        if (g.n > 0) { lo = std::min(lo, g.mean - g.ci95_half); hi = std::max(hi, g.mean + g.ci95_half); }
+        });
+        cu.at.push_back(Summarize(v));
+        cu.ci.push_back(IntervalOfMean(v, sw.interval, /*nonnegative=*/true));  // the plotted metrics are errors
+        const MeanInterval& g = cu.ci.back();
+        if (g.n > 0) { lo = std::min(lo, g.lo); hi = std::max(hi, g.hi); }
       }
       curves.push_back(cu);
     }
@@ -200,8 +202,8 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
       const SampleSummary& g = cu.at[i];
       if (g.n == 0) continue;
       const Eigen::Vector2d m = axes.ToPixel(levels[i], g.mean) + Eigen::Vector2d(dx, 0);
-      const Eigen::Vector2d a = axes.ToPixel(levels[i], g.mean - g.ci95_half) + Eigen::Vector2d(dx, 0);
-      const Eigen::Vector2d b = axes.ToPixel(levels[i], g.mean + g.ci95_half) + Eigen::Vector2d(dx, 0);
+      const Eigen::Vector2d a = axes.ToPixel(levels[i], cu.ci[i].lo) + Eigen::Vector2d(dx, 0);
+      const Eigen::Vector2d b = axes.ToPixel(levels[i], cu.ci[i].hi) + Eigen::Vector2d(dx, 0);
       c.Line(a, b, {cu.color, 1.6, {}});
       c.Line(a - Eigen::Vector2d(5, 0), a + Eigen::Vector2d(5, 0), {cu.color, 1.6, {}});
       c.Line(b - Eigen::Vector2d(5, 0), b + Eigen::Vector2d(5, 0), {cu.color, 1.6, {}});
@@ -212,7 +214,10 @@ bool VersusFigure(const SweepFolder& sw, const std::string& key, const std::stri
     for (const auto& m : line) DrawMarker(c, m, MarkerShape::kCircle, 9.0, cu.color);
     legend.push_back({.label = cu.label, .line = {cu.color, 2.2, {}}, .marker = MarkerShape::kCircle, .marker_color = cu.color});
   }
-  DrawFrame(c, axes, {MetricLabel(metric) + " vs " + key + " (mean, 95% interval)", key, MetricLabel(metric)});
+  const std::string how = sw.interval == IntervalMethod::kStudentT    ? "t"
+                          : sw.interval == IntervalMethod::kBootstrap ? "bootstrap"
+                                                                      : "bootstrap < 10 seeds, else t";
+  DrawFrame(c, axes, {MetricLabel(metric) + " vs " + key + " (mean, 95% interval: " + how + ")", key, MetricLabel(metric)});
   DrawLegend(c, axes, legend, pts);
   SaveFigure(c, stem);
   return true;

@@ -6,8 +6,8 @@
 namespace slambox::render {
 
 /// Writes sweep_dir/figures/{box_<metric>, vs_<key>, heatmap_<algo>}.{png,svg}: box plots
-/// per module and scenario, the metric against each swept parameter (mean with 95%
-/// interval), and a heatmap over the first two swept parameters. Throws InputError for a
+/// per module and scenario, the metric against each swept parameter (mean with the 95%
+/// interval sweep.json's `interval` names), and a heatmap over the first two swept parameters. Throws InputError for a
 /// missing or malformed sweep folder.
 void RenderSweepFigures(const std::string& sweep_dir);
 /// As RenderSweepFigures, returning the written stems relative to sweep_dir.

@@ -13,11 +13,11 @@ Rgba SeriesColor(int i) {
   return kSeries[static_cast<size_t>(((i % 6) + 6) % 6)];
 }
 
-Rgba ModuleColor(const std::vector<std::string>& modules, size_t i) {
-  if (modules.at(i) == "odometry") return color::kOrange;
+Rgba ModuleColor(const std::vector<bool>& is_baseline, size_t i) {
+  if (is_baseline.at(i)) return color::kOrange;
   int k = 0;
-  for (size_t j = 0; j < i; ++j) k += modules[j] != "odometry";
-  // Five Okabe-Ito hues (orange stays odometry's, black is ground truth), then the same
+  for (size_t j = 0; j < i; ++j) k += !is_baseline[j];
+  // Five Okabe-Ito hues (orange stays the baselines', black is ground truth), then the same
   // hues darkened, then lightened toward white: up to fifteen modules stay distinct.
   const Rgba base = SeriesColor(k % 5);
   switch ((k / 5) % 3) {

@@ -31,12 +31,13 @@ inline constexpr Rgba kGroundTruth{0.0, 0.0, 0.0};
 }  // namespace color
 
 /// The i-th series colour (Okabe-Ito without black and yellow, which are reserved for
-/// ground truth and too light on white; orange last, as odometry's colour); cycles after 6.
+/// ground truth and too light on white; orange last, as the baselines' colour); cycles after 6.
 Rgba SeriesColor(int i);
-/// Colour of module i in a list of module names, the same in every figure: odometry
-/// (the baseline) is orange, the others take five SeriesColor hues in order, then the
-/// same darkened, then lightened (fifteen distinct colours before any repeats).
-Rgba ModuleColor(const std::vector<std::string>& modules, size_t i);
+/// Colour of module i of a list, the same in every figure: a baseline module
+/// (ModuleInfo::baseline, e.g. odometry) is orange, the others take five SeriesColor hues
+/// in order, then the same darkened, then lightened (fifteen distinct colours before any
+/// repeats). `is_baseline[j]` says whether module j is one.
+Rgba ModuleColor(const std::vector<bool>& is_baseline, size_t i);
 /// Viridis colormap at u in [0, 1] (clamped), piecewise linear through 9 anchors.
 Rgba Viridis(double u);
 /// "#rrggbb" for SVG / HTML.

@@ -14,9 +14,15 @@ FolderKind DetectFolder(const std::string& dir);
 /// taken from dir/figures/*.png as they are; render them first).
 void WriteReport(const std::string& dir);
 
-/// Minimal Markdown to HTML for the report: # headings, pipe tables, images, paragraphs.
-/// Images `![alt](path)` are embedded from base_dir/path as data URIs.
+/// Minimal Markdown to HTML for the report: # headings (with HeadingId ids), pipe tables,
+/// "- " lists, images, paragraphs with **bold**, `code` and [text](#id) links, and our own
+/// <details> lines passed as they are. Images `![caption](path)` are embedded from
+/// base_dir/path as data URIs, consecutive ones side by side, the caption under each.
 std::string MarkdownToHtml(const std::string& markdown, const std::string& base_dir);
+
+/// The id of a heading: lower-case letters and digits, other runs of characters as '-'
+/// ("Across scenarios" -> "across-scenarios").
+std::string HeadingId(const std::string& heading);
 
 std::string Base64(const std::string& bytes);
 

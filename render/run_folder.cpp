@@ -23,6 +23,17 @@ auto Parsed(const std::string& path, F&& parse) {
 }
 }  // namespace
 
+bool BaselineFlag(const nlohmann::json& doc, const std::string& name, const std::string& path) {
+  if (!doc.contains("modules")) return false;  // written before the flag existed: no module is one
+  const nlohmann::json& modules = doc.at("modules");
+  if (!modules.is_object() || !modules.contains(name)) return false;
+  const nlohmann::json& m = modules.at(name);
+  if (!m.is_object() || !m.contains("baseline")) return false;
+  if (!m.at("baseline").is_boolean())
+    throw InputError(path, 0, "modules." + name + ".baseline is not true or false", "re-run to rewrite the file");
+  return m.at("baseline").get<bool>();
+}
+
 RunFolder ReadRunFolder(const std::string& dir) {
   RunFolder run;
   run.dir = dir;
@@ -35,9 +46,7 @@ RunFolder ReadRunFolder(const std::string& dir) {
   const fs::path world_path = fs::path(dir) / "world.json";
   if (fs::exists(world_path)) {
     run.world = Parsed(world_path.string(), [](const nlohmann::json& j) { return WorldFromJson(j.at("world")); });
-    // A converted real log has an empty world: nothing true to draw.
-    const World& w = run.world;
-    run.has_world = !w.wall_segments.empty() || !w.wall_circles.empty() || !w.landmarks.empty() || !w.movers.empty();
+    run.has_world = WorldHasGeometry(run.world);
   }
   const fs::path gt_path = fs::path(dir) / "groundtruth.tum";
   if (fs::exists(gt_path)) run.groundtruth = ReadTum(gt_path.string());
@@ -54,6 +63,7 @@ RunFolder ReadRunFolder(const std::string& dir) {
     const fs::path ser = fs::path(dir) / "series" / (name + ".json");
     if (fs::exists(ser))
       a.series = Parsed(ser.string(), [&](const nlohmann::json& j) { return ErrorSeriesFromJson(j, ser.string()); });
+    a.baseline = BaselineFlag(run.metrics, name, metrics_path);
     run.algorithms.push_back(std::move(a));
   }
   return run;

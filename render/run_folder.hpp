@@ -23,6 +23,7 @@ struct AlgorithmResult {
   std::vector<StampedPose> trajectory;   ///< <algo>.tum (empty when missing)
   std::optional<Estimate> estimate;      ///< estimates/<algo>.json
   std::optional<ErrorSeries> series;     ///< series/<algo>.json
+  bool baseline = false;                 ///< metrics.json's modules.<algo>.baseline (ModuleInfo::baseline)
 };
 
 struct RunFolder {
@@ -35,6 +36,15 @@ struct RunFolder {
   std::vector<StampedPose> groundtruth;
   std::vector<AlgorithmResult> algorithms;  ///< metrics.json order
 };
+
+/// False for a converted real log's empty world: nothing true to draw.
+inline bool WorldHasGeometry(const World& w) {
+  return !w.wall_segments.empty() || !w.wall_circles.empty() || !w.landmarks.empty() || !w.movers.empty();
+}
+
+/// `doc.modules.NAME.baseline` of a metrics.json or sweep.json (false when absent: the
+/// flag, never the name, makes a baseline); InputError naming `path` when not a bool.
+bool BaselineFlag(const nlohmann::json& doc, const std::string& name, const std::string& path);
 
 /// Throws InputError when metrics.json is missing or any present file is malformed.
 RunFolder ReadRunFolder(const std::string& dir);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/error.hpp"
 #include "core/json_io.hpp"
+#include "render/run_folder.hpp"
 
 namespace slambox::render {
 
@@ -30,6 +32,13 @@ SweepFolder ReadSweepFolder(const std::string& dir) {
   for (const auto& r : rows) {
     if (std::find(sw.scenarios.begin(), sw.scenarios.end(), r.scenario) == sw.scenarios.end()) sw.scenarios.push_back(r.scenario);
     if (std::find(sw.algorithms.begin(), sw.algorithms.end(), r.algorithm) == sw.algorithms.end()) sw.algorithms.push_back(r.algorithm);
+  }
+  const std::string path = (fs::path(dir) / "sweep.json").string();
+  for (const auto& a : sw.algorithms) sw.baseline.push_back(BaselineFlag(spec, a, path));
+  if (spec.contains("interval")) {
+    const auto m = IntervalMethodFromName(spec.at("interval").is_string() ? spec.at("interval").get<std::string>() : "");
+    if (m) sw.interval = *m;
+    else throw InputError(path, 0, "interval must be auto, t or bootstrap", "re-run the sweep to rewrite sweep.json");
   }
   return sw;
 }

@@ -5,12 +5,15 @@
 #include <vector>
 
 #include "eval/results_table.hpp"
+#include "eval/statistics.hpp"
 
 namespace slambox::render {
 
 struct SweepFolder {
   std::string dir;
   std::vector<std::string> scenarios, algorithms;  ///< only those with rows, sweep.json's order first
+  std::vector<bool> baseline;  ///< per algorithm: sweep.json's modules.<algo>.baseline
+  IntervalMethod interval = IntervalMethod::kAuto;  ///< sweep.json's `interval`
   ResultsTable results;
 };
 

@@ -12,19 +12,19 @@ constexpr Rgba kMoverColor{0.800, 0.475, 0.655, 0.8};
 }  // namespace
 
 SeriesStyle AlgorithmStyle(const RunFolder& run, size_t index) {
-  std::vector<std::string> names;
-  for (const auto& a : run.algorithms) names.push_back(a.name);
-  const std::string& name = names.at(index);
-  if (name == "odometry") return {name, {ModuleColor(names, index), 2.2, {10, 6}}};  // the baseline: dashed
-  return {name, {ModuleColor(names, index), 2.6, {}}};
+  std::vector<bool> baseline;
+  for (const auto& a : run.algorithms) baseline.push_back(a.baseline);
+  const std::string& name = run.algorithms.at(index).name;
+  if (baseline[index]) return {name, {ModuleColor(baseline, index), 2.2, {10, 6}}};  // a baseline: dashed
+  return {name, {ModuleColor(baseline, index), 2.6, {}}};
 }
 
 // Thin and drawn last: the reference stays visible, estimates show as colour on either side.
 SeriesStyle GroundTruthStyle() { return {"ground truth", {color::kGroundTruth, 1.8, {}}}; }
 
 WorldFigure::WorldFigure(int width_px, int height_px, Eigen::Vector2d lo, Eigen::Vector2d hi,
-                         const std::vector<LegendEntry>& legend, const FigureStyle& style)
-    : canvas(width_px, height_px, 3) {
+                         const std::vector<LegendEntry>& legend, const FigureStyle& style, int supersample)
+    : canvas(width_px, height_px, supersample) {
   const double legend_w = legend.empty() ? 140.0 : std::max(140.0, LegendSize(legend, style).x() + 24.0);
   const PlotArea area{108.0, 62.0, width_px - 24.0 - legend_w, height_px - 88.0};
   const Eigen::Vector2d pad = 0.04 * (hi - lo).cwiseMax(Eigen::Vector2d(1.0, 1.0));

@@ -15,8 +15,8 @@ struct SeriesStyle {
   Stroke stroke;
 };
 
-/// Module i of a run: odometry is grey and dashed (the baseline), the others take the
-/// Okabe-Ito series colours in metrics.json order.
+/// Module i of a run: a baseline (metrics.json's `modules`, ModuleInfo::baseline) is
+/// orange and dashed, the others take the Okabe-Ito series colours in metrics.json order.
 SeriesStyle AlgorithmStyle(const RunFolder& run, size_t index);
 SeriesStyle GroundTruthStyle();
 
@@ -26,7 +26,7 @@ struct WorldFigure {
   Canvas canvas;
   Axes axes;
   WorldFigure(int width_px, int height_px, Eigen::Vector2d lo, Eigen::Vector2d hi,
-              const std::vector<LegendEntry>& legend, const FigureStyle& style = {});
+              const std::vector<LegendEntry>& legend, const FigureStyle& style = {}, int supersample = 3);
   /// Frame, labels "x [m]" / "y [m]", title, scale bar and the legend.
   void Finish(const std::string& title, const std::vector<LegendEntry>& legend, const FigureStyle& style = {});
 };

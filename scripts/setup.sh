@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages slambox needs, only those missing. Idempotent.
 # Runs apt-get as root, or through sudo when not root.
-# --with-slurm also installs a single-node Slurm (for the job-array test).
+# --with-slurm also installs a single-node Slurm (for the job-array test); --with-browser
+# Debian's chromium, with which a test opens the sweep report headless (scripts/test.sh
+# asks for both; the demo needs neither).
 set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config ccache
@@ -19,8 +21,14 @@ PACKAGES=(
 )
 # MRPT's own applications (icp-slam, rbpf-slam, graphslam-engine), only for the cross-check
 # in slam/mrpt/README.md: `--with-mrpt-apps`.
-[ "${1:-}" = "--with-mrpt-apps" ] && PACKAGES+=(mrpt-apps)
-[ "${1:-}" = "--with-slurm" ] && PACKAGES+=(slurmctld slurmd slurm-client munge)
+for flag in "$@"; do
+  case "$flag" in
+    --with-mrpt-apps) PACKAGES+=(mrpt-apps) ;;
+    --with-slurm) PACKAGES+=(slurmctld slurmd slurm-client munge) ;;
+    --with-browser) PACKAGES+=(chromium) ;;  # tests/render/report_browser_test.cpp
+    *) echo "setup: unknown option $flag (use --with-mrpt-apps, --with-slurm, --with-browser)" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 sanitize=""
 if [ "${1:-}" = "--sanitize" ]; then sanitize=1; shift; fi
-bash scripts/setup.sh --with-slurm
+bash scripts/setup.sh --with-slurm --with-browser
 if [ -z "$sanitize" ]; then
   bash scripts/build.sh
   ctest --test-dir build --output-on-failure -j "${JOBS:-$(nproc)}" --timeout 600 "$@"

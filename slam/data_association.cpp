@@ -1,6 +1,7 @@
 #include "slam/data_association.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,17 +11,24 @@
 
 namespace slambox {
 
-double MahalanobisSquared(const EkfSlamState& s, int index, const Eigen::Vector2d& z, const Eigen::Matrix2d& R) {
+Eigen::Matrix2d InnovationCovariance(const EkfSlamState& s, int index, const Eigen::Matrix2d& R) {
   const ObservationPrediction p = PredictObservation(s.Pose(), s.Landmark(index));
   const int a = 3 + 2 * index;
   const Eigen::Matrix3d P_rr = s.covariance.topLeftCorner<3, 3>();
   const Eigen::Matrix<double, 3, 2> P_rm = s.covariance.block<3, 2>(0, a);
   const Eigen::Matrix2d P_mm = s.covariance.block<2, 2>(a, a);
   const Eigen::Matrix2d cross = p.J_z_pose * P_rm * p.J_z_landmark.transpose();
-  const Eigen::Matrix2d S = p.J_z_pose * P_rr * p.J_z_pose.transpose() + cross + cross.transpose() +
-                            p.J_z_landmark * P_mm * p.J_z_landmark.transpose() + R;
-  const Eigen::Vector2d nu = Innovation(z, p.z);
-  return nu.dot(S.ldlt().solve(nu));
+  return p.J_z_pose * P_rr * p.J_z_pose.transpose() + cross + cross.transpose() +
+         p.J_z_landmark * P_mm * p.J_z_landmark.transpose() + R;
+}
+
+double ExpectedFalseInGate(const Eigen::Matrix2d& S, double range_m, double gate_chi2, double density_per_m2) {
+  return density_per_m2 * M_PI * gate_chi2 * std::sqrt(std::max(0.0, S.determinant())) * range_m;
+}
+
+double MahalanobisSquared(const EkfSlamState& s, int index, const Eigen::Vector2d& z, const Eigen::Matrix2d& R) {
+  const Eigen::Vector2d nu = Innovation(z, PredictObservation(s.Pose(), s.Landmark(index)).z);
+  return nu.dot(InnovationCovariance(s, index, R).ldlt().solve(nu));
 }
 
 namespace {
@@ -61,27 +69,53 @@ Association AssociateNearestNeighbour(const EkfSlamState& s, const std::vector<E
   return a;
 }
 
-double JointMahalanobisSquared(const EkfSlamState& s, const std::vector<Eigen::Vector2d>& z,
-                               const Eigen::Matrix2d& R, const std::vector<std::pair<int, int>>& pairs) {
+JointInnovation JointInnovationOf(const EkfSlamState& s, const std::vector<Eigen::Vector2d>& z,
+                                  const Eigen::Matrix2d& R, const std::vector<std::pair<int, int>>& pairs) {
   const int k = static_cast<int>(pairs.size());
   // H over the sub-state (robot, paired landmarks): 2k x (3 + 2k).
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * k, 3 + 2 * k), P(3 + 2 * k, 3 + 2 * k);
-  Eigen::VectorXd nu(2 * k);
+  JointInnovation out{Eigen::VectorXd(2 * k), Eigen::MatrixXd()};
   std::vector<int> rows = {0, 1, 2};
   for (int q = 0; q < k; ++q) {
     const auto [i, j] = pairs[q];
     const ObservationPrediction p = PredictObservation(s.Pose(), s.Landmark(j));
     H.block<2, 3>(2 * q, 0) = p.J_z_pose;
     H.block<2, 2>(2 * q, 3 + 2 * q) = p.J_z_landmark;
-    nu.segment<2>(2 * q) = Innovation(z[i], p.z);
+    out.nu.segment<2>(2 * q) = Innovation(z[i], p.z);
     rows.push_back(3 + 2 * j);
     rows.push_back(4 + 2 * j);
   }
   for (int r = 0; r < 3 + 2 * k; ++r)
     for (int c = 0; c < 3 + 2 * k; ++c) P(r, c) = s.covariance(rows[r], rows[c]);
-  Eigen::MatrixXd S = H * P * H.transpose();
-  for (int q = 0; q < k; ++q) S.block<2, 2>(2 * q, 2 * q) += R;
-  return nu.dot(S.ldlt().solve(nu));
+  out.S = H * P * H.transpose();
+  for (int q = 0; q < k; ++q) out.S.block<2, 2>(2 * q, 2 * q) += R;
+  return out;
+}
+
+std::vector<Eigen::Matrix2d> ConditionalInnovationCovariances(const Eigen::MatrixXd& S) {
+  const int k = static_cast<int>(S.rows()) / 2;
+  std::vector<Eigen::Matrix2d> out(k);
+  for (int q = 0; q < k; ++q) {
+    // Reorder as (rest, q) and take the Schur complement of the rest.
+    std::vector<int> rest;
+    for (int r = 0; r < 2 * k; ++r)
+      if (r / 2 != q) rest.push_back(r);
+    const int n = static_cast<int>(rest.size());
+    Eigen::MatrixXd S_rr(n, n), S_rq(n, 2);
+    for (int a = 0; a < n; ++a) {
+      for (int b = 0; b < n; ++b) S_rr(a, b) = S(rest[a], rest[b]);
+      S_rq.row(a) = S.block<1, 2>(rest[a], 2 * q);
+    }
+    const Eigen::Matrix2d S_qq = S.block<2, 2>(2 * q, 2 * q);
+    out[q] = n == 0 ? S_qq : Eigen::Matrix2d(S_qq - S_rq.transpose() * S_rr.ldlt().solve(S_rq));
+  }
+  return out;
+}
+
+double JointMahalanobisSquared(const EkfSlamState& s, const std::vector<Eigen::Vector2d>& z,
+                               const Eigen::Matrix2d& R, const std::vector<std::pair<int, int>>& pairs) {
+  const JointInnovation j = JointInnovationOf(s, z, R, pairs);
+  return j.nu.dot(j.S.ldlt().solve(j.nu));
 }
 
 namespace {

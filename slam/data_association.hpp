@@ -31,6 +31,15 @@ struct Association {
   int jcbb_nodes = 0;                  ///< nodes expanded (JCBB only)
 };
 
+/// Innovation covariance S = H P H^T + R of observing landmark `index` of `state`.
+Eigen::Matrix2d InnovationCovariance(const EkfSlamState& state, int index, const Eigen::Matrix2d& R);
+
+/// Expected number of false detections (spatial density `density_per_m2`) inside the gate
+/// d^2 < gate_chi2 of a predicted observation at `range_m` with innovation covariance S:
+/// the gate is an ellipse of area pi gate_chi2 sqrt(det S) in (range, bearing) and, as
+/// dx dy = r dr dbearing, r times that in the plane.
+double ExpectedFalseInGate(const Eigen::Matrix2d& S, double range_m, double gate_chi2, double density_per_m2);
+
 /// d^2 of observation z against landmark `index` of `state`.
 double MahalanobisSquared(const EkfSlamState& state, int index, const Eigen::Vector2d& z, const Eigen::Matrix2d& R);
 
@@ -42,6 +51,20 @@ Association AssociateNearestNeighbour(const EkfSlamState& state, const std::vect
 /// JCBB; unpaired observations become new landmarks or are discarded by the two gates.
 Association AssociateJcbb(const EkfSlamState& state, const std::vector<Eigen::Vector2d>& z,
                           const Eigen::Matrix2d& R, const AssociationGates& gates);
+
+/// Joint innovation covariance (2k x 2k) of a hypothesis (pairs of observation index,
+/// landmark index), correlated through the robot pose; and the joint innovation.
+struct JointInnovation {
+  Eigen::VectorXd nu;
+  Eigen::MatrixXd S;
+};
+JointInnovation JointInnovationOf(const EkfSlamState& state, const std::vector<Eigen::Vector2d>& z,
+                                  const Eigen::Matrix2d& R, const std::vector<std::pair<int, int>>& pairs);
+
+/// Per pair of a hypothesis, the innovation covariance of that pair conditioned on the
+/// other pairs (the Schur complement S_qq - S_q,rest S_rest^-1 S_rest,q of the joint S):
+/// how well the hypothesis pins the pair down beyond what the others already say.
+std::vector<Eigen::Matrix2d> ConditionalInnovationCovariances(const Eigen::MatrixXd& S_joint);
 
 /// Joint d^2 of a hypothesis (pairs of observation index, landmark index) with its
 /// correlations through the robot pose.

@@ -29,9 +29,11 @@ void DeadReckoning::OnOdometry(const OdometryEvent& odometry) {
 Estimate DeadReckoning::Finish() { return std::move(estimate_); }
 
 ModuleInfo DeadReckoningModule() {
-  return MakeModuleInfo<DeadReckoning, DeadReckoningConfig>(
+  ModuleInfo info = MakeModuleInfo<DeadReckoning, DeadReckoningConfig>(
       "odometry", "dead reckoning from wheel odometry, covariance from the motion model", {.odometry = true},
       &BindParams);
+  info.baseline = true;  // what every SLAM module is compared with
+  return info;
 }
 
 }  // namespace slambox

@@ -1,5 +1,7 @@
 #include "slam/ekf_slam.hpp"
 
+#include <cmath>
+
 #include "core/chi_square.hpp"
 #include "core/error.hpp"
 #include "core/odometry_model.hpp"
@@ -35,6 +37,9 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("merge_probability", c.merge_probability, "-",
          "merge two landmarks whose difference d^2 is below this chi2(2) quantile, unless seen in one scan (0 = never)",
          Range{.min = 0, .max = 1, .max_open = true});
+  b.Bind("hold_uncertain_pairings", c.hold_uncertain_pairings, "-",
+         "unknown ids: hold a pairing whose gate (given the scan's other pairings) expects more clutter than the gate's "
+         "miss probability, until consecutive scans repeat it enough");
   b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance", Above(0));
   b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
@@ -56,6 +61,8 @@ void EkfSlam::Start(const StreamHeader& header) {
   R_ = config_.observation_noise_scale * ObservationCovariance(sensor);
   range_max_m_ = sensor.range_max_m;
   half_fov_rad_ = sensor.fov_deg * M_PI / 360.0;
+  // The footprint is the circular sector of radius range_max and angle fov: r^2 * half_fov.
+  clutter_density_per_m2_ = sensor.clutter_per_scan / (range_max_m_ * range_max_m_ * half_fov_rad_);
   known_ids_ = config_.association == EkfAssociation::kKnown ||
                (config_.association == EkfAssociation::kAuto && sensor.known_ids);
   state_ = MakeInitialState(header.start_pose);
@@ -63,6 +70,7 @@ void EkfSlam::Start(const StreamHeader& header) {
   key_of_id_.clear();
   merged_into_.clear();
   co_observed_.clear();
+  held_log_clutter_.clear();
   next_key_ = 0;
   prior_position_ = header.start_pose.translation();
   estimate_ = Estimate{};
@@ -113,6 +121,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   if (known_ids_) target = AssociateKnownIds(obs);
   else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
   else target = AssociateJcbb(state_, z, R_, gates).landmark;
+  const std::vector<bool> held = HoldUncertainPairings(z, target);
 
   // One batched update with every matched observation, linearized at the current
   // estimate, or for FEJ at the robot's prior and the landmark's first estimate.
@@ -151,6 +160,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
     for (size_t a = 0; a < keys.size(); ++a)
       for (size_t b = a + 1; b < keys.size(); ++b)
         if (keys[a] >= 0 && keys[b] >= 0 && keys[a] != keys[b]) co_observed_.insert(std::minmax(keys[a], keys[b]));
+  for (size_t j = 0; j < held.size(); ++j) matched[j] = matched[j] || held[j];  // seen, not missed
   ManageExistence(matched, event.t_s);
   const int merged = known_ids_ ? 0 : MergeDuplicates();
 
@@ -165,11 +175,46 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   Record(event.t_s, "new_landmarks", created);
   Record(event.t_s, "discarded_observations", discarded);
   if (!known_ids_) Record(event.t_s, "merged_landmarks", merged);
+  if (!known_ids_) Record(event.t_s, "held_pairings", static_cast<double>(std::count(held.begin(), held.end(), true)));
   if (update.applied) {
     Record(event.t_s, "nis", update.nis);
     Record(event.t_s, "nis_dof", update.dof);
   }
   return keys;
+}
+
+std::vector<bool> EkfSlam::HoldUncertainPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target) {
+  // A pairing is only as good as its gate is small. Its gate, conditioned on the scan's
+  // other pairings, holds an expected mu clutter detections (ExpectedFalseInGate); a
+  // large mu is the lone re-observation of an old landmark after drift (a loop closure
+  // on one detection), which one clutter detection can fake. Clutter is drawn anew every
+  // scan, so a pairing repeated in n consecutive scans is clutter with probability
+  // mu_1 ... mu_n: it is held (not used, its landmark not counted as missed) while that
+  // product is above the gate's own miss probability 1 - P[chi2(2) < accept]. Several
+  // such pairings in one jointly compatible scan pin each other down (small conditional
+  // gates) and pass at once.
+  std::vector<bool> held(tracks_.size(), false);
+  std::map<int, double> log_clutter;
+  if (known_ids_ || !config_.hold_uncertain_pairings || !(clutter_density_per_m2_ > 0)) return held;
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < z.size(); ++i)
+    if (target[i] >= 0) pairs.emplace_back(static_cast<int>(i), target[i]);
+  if (!pairs.empty()) {
+    const auto S = ConditionalInnovationCovariances(JointInnovationOf(state_, z, R_, pairs).S);
+    const double log_allowed = std::log(1.0 - ChiSquareCdf(config_.gate_accept_chi2, 2.0));
+    for (size_t q = 0; q < pairs.size(); ++q) {
+      const auto [i, j] = pairs[q];
+      const double mu = ExpectedFalseInGate(S[q], z[i].x(), config_.gate_accept_chi2, clutter_density_per_m2_);
+      const auto before = held_log_clutter_.find(tracks_[j].key);
+      const double log_p = std::log(std::min(1.0, mu)) + (before != held_log_clutter_.end() ? before->second : 0.0);
+      if (log_p <= log_allowed) continue;
+      log_clutter[tracks_[j].key] = log_p;
+      target[i] = Association::kDiscard;
+      held[j] = true;
+    }
+  }
+  held_log_clutter_ = std::move(log_clutter);  // a streak ends with a scan that does not hold it
+  return held;
 }
 
 void EkfSlam::ManageExistence(const std::vector<bool>& matched, double t_s) {

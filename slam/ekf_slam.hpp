@@ -9,7 +9,9 @@
 // where a later real observation could be paired with it). A confirmed landmark keeps an existence count (+1 seen, -1 missed while
 // predicted inside range and field of view) and is removed at 0. Two landmarks that
 // become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
-// ever seen in one scan (then they are two landmarks, however close). Optional FEJ-EKF
+// ever seen in one scan (then they are two landmarks, however close). A pairing whose gate
+// may hold clutter (the lone re-observation of an old landmark after drift) is held until
+// repeated scans or other pairings support it (HoldUncertainPairings). Optional FEJ-EKF
 // (Huang, Mourikis & Roumeliotis 2008).
 #include <algorithm>
 #include <map>
@@ -40,6 +42,7 @@ struct EkfSlamConfig {
   double tentative_max_age_s = 2.0;     ///< [s] a tentative landmark not confirmed this long after its creation is deleted
   double visibility_margin_m = 0.5;     ///< [m] a landmark counts as missed only this far inside range_max
   double merge_probability = 0.99;      ///< [-] merge two landmarks whose difference d^2 is below this chi2 quantile (0 = never)
+  bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until repeated scans make that unlikelier than a gate miss
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
@@ -76,6 +79,8 @@ class EkfSlam : public SlamModule {
 
  private:
   std::vector<int> AssociateKnownIds(const std::vector<LandmarkObservation>& obs) const;
+  /// Discards (holds) the pairings of `target` that may be clutter; returns the held landmarks.
+  std::vector<bool> HoldUncertainPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target);
   void ManageExistence(const std::vector<bool>& matched, double t_s);
   int MergeDuplicates();
   bool SeenTogether(int key_a, int key_b) const { return co_observed_.count(std::minmax(key_a, key_b)) > 0; }
@@ -88,12 +93,14 @@ class EkfSlam : public SlamModule {
   Eigen::Matrix2d R_ = Eigen::Matrix2d::Identity();
   double range_max_m_ = 1e9;
   double half_fov_rad_ = M_PI;
+  double clutter_density_per_m2_ = 0.0;  ///< the sensor's clutter_per_scan over its footprint
   bool known_ids_ = true;
   EkfSlamState state_;
   std::vector<LandmarkTrack> tracks_;
   std::map<int, int> key_of_id_;  ///< true id -> key (known association)
   std::map<int, int> merged_into_;  ///< removed key -> key it was merged into
   std::set<std::pair<int, int>> co_observed_;  ///< (smaller, larger) keys seen in one scan
+  std::map<int, double> held_log_clutter_;  ///< key -> log P[clutter] of its pairing, held in consecutive scans
   int next_key_ = 0;
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction
   Estimate estimate_;

@@ -13,7 +13,7 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
   b.Bind("solve_every_keyframes", c.solve_every_keyframes, "keyframes", "also solve during the run (0 = at the end)",
          AtLeast(0));
   b.Bind("max_iterations", c.max_iterations, "-", "Ceres iterations per solve", AtLeast(1));
-  b.Bind("compute_covariance", c.compute_covariance, "-", "marginal covariances from ceres::Covariance");
+  b.Bind("compute_covariance", c.compute_covariance, "-", "marginal covariances (selected inversion of the information matrix)");
   b.Bind("huber_scale", c.huber_scale, "sigma", "Huber loss on range-bearing residuals (0 = none)", AtLeast(0));
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
 }

@@ -8,7 +8,7 @@
 // enough odometry; odometry between keyframes becomes one between-factor whose
 // covariance is the motion model's, propagated over the steps. The batch solve runs in
 // Finish (and optionally every K keyframes); marginal covariances come from
-// ceres::Covariance. The trajectory has every odometry event: a non-keyframe is its
+// selected inversion of the information matrix. The trajectory has every odometry event: a non-keyframe is its
 // keyframe's pose composed with the odometry since.
 #include <vector>
 
@@ -23,7 +23,7 @@ struct GraphSlamConfig {
   double keyframe_distance_m = 0.0; ///< [m] ... or after this much travel (0 = off); both off: every scan
   int solve_every_keyframes = 0;    ///< [keyframes] also solve during the run (0 = only at the end)
   int max_iterations = 50;          ///< [-] Ceres iterations per solve
-  bool compute_covariance = true;   ///< marginal covariances of poses and landmarks (ceres::Covariance)
+  bool compute_covariance = true;   ///< marginal covariances of poses and landmarks (slam/sparse_marginals.hpp)
   double huber_scale = 0.0;         ///< [sigma] Huber loss on range-bearing residuals (0 = none)
   EkfSlamConfig frontend;           ///< association and tentative-landmark settings (same names as ekf-slam)
 };

@@ -7,6 +7,7 @@
 
 #include "slam/angle_manifold.hpp"
 #include "slam/pose_graph_cost.hpp"
+#include "slam/sparse_marginals.hpp"
 
 namespace slambox {
 
@@ -97,25 +98,25 @@ LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOp
 
   solution.pose_covariances.assign(g.poses.size(), Eigen::Matrix3d::Zero());
   if (!options.compute_covariance || !solution.usable) return solution;
-  ceres::Covariance::Options cov_options;
-  cov_options.algorithm_type = ceres::SPARSE_QR;
-  cov_options.num_threads = 1;
-  ceres::Covariance covariance(cov_options);
-  std::vector<std::pair<const double*, const double*>> blocks;
-  for (size_t i = 1; i < g.poses.size(); ++i) blocks.emplace_back(&x[3 * i], &x[3 * i]);
-  for (const auto& [key, m] : g.landmarks) blocks.emplace_back(m.data(), m.data());
-  if (!covariance.Compute(blocks, &problem)) return solution;
+  // Marginals: selected inversion of the information matrix (slam/sparse_marginals.hpp).
+  std::vector<double*> blocks;
+  std::vector<std::pair<int, int>> requested;
+  int offset = 0;
+  for (size_t i = 1; i < g.poses.size(); ++i, offset += 3) {
+    blocks.push_back(&x[3 * i]);
+    requested.emplace_back(offset, 3);
+  }
+  for (auto& [key, m] : g.landmarks) {
+    blocks.push_back(m.data());
+    requested.emplace_back(offset, 2);
+    offset += 2;
+  }
+  const DiagonalBlocksOfInverse inverse = InverseDiagonalBlocks(InformationMatrix(problem, blocks), requested);
+  if (!inverse.ok) return solution;
   solution.covariance_ok = true;
-  for (size_t i = 1; i < g.poses.size(); ++i) {
-    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> C;
-    covariance.GetCovarianceBlock(&x[3 * i], &x[3 * i], C.data());
-    solution.pose_covariances[i] = C;
-  }
-  for (const auto& [key, m] : g.landmarks) {
-    Eigen::Matrix<double, 2, 2, Eigen::RowMajor> C;
-    covariance.GetCovarianceBlock(m.data(), m.data(), C.data());
-    solution.landmark_covariances[key] = C;
-  }
+  size_t b = 0;
+  for (size_t i = 1; i < g.poses.size(); ++i) solution.pose_covariances[i] = inverse.blocks[b++];
+  for (const auto& [key, m] : g.landmarks) solution.landmark_covariances[key] = inverse.blocks[b++];
   return solution;
 }
 

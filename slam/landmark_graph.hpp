@@ -7,7 +7,8 @@
 //                  e = [R_i^T (t_j - t_i) - t_ij ; wrap(theta_j - theta_i - theta_ij)], info Sigma_ij^-1
 //   range-bearing: e = [r - |m - t_i| ; wrap(b - atan2(m - t_i) + theta_i)], info R^-1
 // Poses are SE2, solved on the pose manifold of slam/angle_manifold.hpp (as the pose graph).
-// Marginal covariances of every pose and landmark come from ceres::Covariance.
+// Marginal covariances of every pose and landmark: selected inversion of the information
+// matrix (slam/sparse_marginals.hpp; deterministic, no ceres::Covariance).
 #include <Eigen/Core>
 #include <map>
 #include <string>

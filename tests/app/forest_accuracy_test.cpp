@@ -81,5 +81,21 @@ TEST(ForestAccuracy, UnknownIdsWithClutter) {
   }
 }
 
+TEST(ForestAccuracy, HeldUncertainPairingsCloseTheLoop) {
+  // Seeds 10 and 16 (held out when the rule was designed on seed 0) failed the loop
+  // closure without hold_uncertain_pairings (graphslam 7.33 and 7.08 m, 49 and 46 spurious
+  // landmarks); measured with it: graphslam 0.22 / 0.45 m with no spurious or duplicate
+  // landmark, ekf-slam 1.08 / 0.92 m (its filtered map keeps 1 / 8 estimates farther than
+  // 1 m from every tree). Bounds: 1.5x the measured ATE.
+  const std::map<std::uint64_t, std::pair<double, double>> bound = {{10u, {0.33, 1.62}}, {16u, {0.68, 1.38}}};
+  for (const auto& [seed, b] : bound) {
+    const Result r = RunForest(seed);
+    SCOPED_TRACE(seed);
+    EXPECT_LT(r.graph, b.first);
+    EXPECT_LT(r.ekf, b.second);
+    EXPECT_EQ(r.graph_map.spurious + r.graph_map.duplicates, 0);
+  }
+}
+
 }  // namespace
 }  // namespace slambox

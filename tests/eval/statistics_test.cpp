@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace slambox {
 namespace {
@@ -80,6 +82,59 @@ TEST(Statistics, PercentileMatchesNumpyLinear) {
   EXPECT_DOUBLE_EQ(Percentile({7}, 95.0), 7.0);
   EXPECT_DOUBLE_EQ(Percentile({1, 2, 3}, 100.0), 3.0);
   EXPECT_TRUE(std::isnan(Percentile({}, 50.0)));
+}
+
+TEST(Interval, ExactBootstrapOfTwoAndFiveValuesMatchesTheBinomialClosedForm) {
+  // {1, 3}: resample means 1, 2, 3 with probabilities 1/4, 1/2, 1/4 -> [1, 3].
+  const MeanInterval two = IntervalOfMean({3.0, 1.0}, IntervalMethod::kBootstrap, true);
+  EXPECT_EQ(two.method, IntervalMethod::kBootstrap);
+  EXPECT_DOUBLE_EQ(two.lo, 1.0);
+  EXPECT_DOUBLE_EQ(two.hi, 3.0);
+  // {0, 0, 0, 0, 10}: mean = 2k, k ~ Binomial(5, 0.2); P(k = 0) = 0.328 >= 2.5 %,
+  // P(k <= 2) = 0.942 < 97.5 % <= P(k <= 3) = 0.993 -> [0, 6].
+  const MeanInterval five = IntervalOfMean({0, 10, 0, 0, 0}, IntervalMethod::kAuto, true);
+  EXPECT_EQ(five.method, IntervalMethod::kBootstrap);
+  EXPECT_DOUBLE_EQ(five.lo, 0.0);
+  EXPECT_DOUBLE_EQ(five.hi, 6.0);
+  // {1, 2, 3}: P(mean = 1) = 1/27 > 2.5 %: with three seeds the interval is the range.
+  const MeanInterval three = IntervalOfMean({2, 3, 1}, IntervalMethod::kAuto, true);
+  EXPECT_DOUBLE_EQ(three.lo, 1.0);
+  EXPECT_DOUBLE_EQ(three.hi, 3.0);
+}
+
+TEST(Interval, ResampledBootstrapMatchesTheBinomialAndIsDeterministic) {
+  // Eleven zeros and one 12: mean = k ~ Binomial(12, 1/12); P(k = 0) = 0.352,
+  // P(k <= 2) = 0.935 < 97.5 % < P(k <= 3) = 0.986 -> [0, 3] (20000 resamples; the
+  // 97.5 % point is ~200 resamples from either boundary).
+  std::vector<double> v(11, 0.0);
+  v.push_back(12.0);
+  const MeanInterval a = IntervalOfMean(v, IntervalMethod::kBootstrap, true);
+  EXPECT_DOUBLE_EQ(a.lo, 0.0);
+  EXPECT_DOUBLE_EQ(a.hi, 3.0);
+  std::reverse(v.begin(), v.end());
+  const MeanInterval b = IntervalOfMean(v, IntervalMethod::kBootstrap, true);
+  EXPECT_EQ(a.lo, b.lo);
+  EXPECT_EQ(a.hi, b.hi);
+}
+
+TEST(Interval, StudentTFromTenValuesAndNeverBelowZeroForAnError) {
+  EXPECT_EQ(ResolveInterval(IntervalMethod::kAuto, 9), IntervalMethod::kBootstrap);
+  EXPECT_EQ(ResolveInterval(IntervalMethod::kAuto, 10), IntervalMethod::kStudentT);
+  // A skewed error of 3 seeds: the t-interval 0.31 -+ 4.303 * 0.51 / sqrt(3) goes below 0.
+  const std::vector<double> skewed{0.01, 0.02, 0.9};
+  const SampleSummary s = Summarize(skewed);
+  const MeanInterval t = IntervalOfMean(skewed, IntervalMethod::kStudentT, false);
+  EXPECT_NEAR(t.lo, s.mean - 4.303 * s.std / std::sqrt(3.0), 1e-12);
+  EXPECT_LT(t.lo, 0.0);
+  const MeanInterval clipped = IntervalOfMean(skewed, IntervalMethod::kStudentT, true);
+  EXPECT_EQ(clipped.lo, 0.0);
+  EXPECT_TRUE(clipped.clipped);
+  EXPECT_NEAR(clipped.hi, t.hi, 1e-15);
+  const MeanInterval boot = IntervalOfMean(skewed, IntervalMethod::kAuto, true);
+  EXPECT_DOUBLE_EQ(boot.lo, 0.01);
+  EXPECT_DOUBLE_EQ(boot.hi, 0.9);
+  EXPECT_EQ(IntervalOfMean({}, IntervalMethod::kAuto, true).n, 0);
+  EXPECT_DOUBLE_EQ(IntervalOfMean({0.5}, IntervalMethod::kAuto, true).hi, 0.5);
 }
 
 }  // namespace

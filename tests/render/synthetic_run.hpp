@@ -131,6 +131,7 @@ inline void WriteSyntheticRun(const std::string& dir, std::uint64_t seed = 7, bo
     metrics["algorithms"][name] = {{"ate_rmse_m", name == "odometry" ? 2.1 : 0.05}, {"rpe_trans_rmse_m", 0.01},
                                    {"anees", name == "odometry" ? nullptr : json(3.2)}, {"landmark_rmse_m", nullptr},
                                    {"status", "ok"}};
+    metrics["modules"][name] = {{"baseline", name == "odometry"}};  // as `slambox run` writes it (ModuleInfo)
     if (!with_series) continue;
     json ser{{"t_s", json::array()}, {"distance_m", json::array()}, {"ate_m", json::array()},
              {"heading_error_deg", json::array()}, {"nees", json::array()}, {"nees_band_95", {2.2, 3.9}}};

@@ -18,7 +18,9 @@ inline void WriteSyntheticSweep(const std::string& dir, std::uint64_t seed = 5) 
   const std::vector<std::string> scenarios{"loop", "tunnel"}, algos{"icp-poseslam", "odometry"};
   const std::vector<double> sigmas{0.01, 0.03, 0.05}, alphas{1.0, 2.0};
   nlohmann::json spec{{"scenarios", scenarios}, {"algorithms", algos}, {"seeds", {0, 1, 2, 3, 4, 5}},
-                      {"grid", {{"sensors.lidar.sigma_range_m", sigmas}, {"sensors.odometry.alpha_scale", alphas}}}};
+                      {"grid", {{"sensors.lidar.sigma_range_m", sigmas}, {"sensors.odometry.alpha_scale", alphas}}},
+                      {"interval", "auto"},
+                      {"modules", {{"icp-poseslam", {{"baseline", false}}}, {"odometry", {{"baseline", true}}}}}};
   std::ostringstream csv;
   csv << "run_id,scenario,seed,algorithm,status,sensors.lidar.sigma_range_m,sensors.odometry.alpha_scale,ate_rmse_m,rpe_trans_rmse_m,anees\n";
   int run = 0;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+
 #include "slam/range_bearing.hpp"
 
 namespace slambox {
@@ -83,6 +85,44 @@ TEST(DataAssociation, Chi2QuantileMatchesTables) {
   EXPECT_NEAR(ChiSquareQuantile(0.95, 4), 9.488, 0.05);
   EXPECT_NEAR(ChiSquareQuantile(0.99, 10), 23.209, 0.05);
   EXPECT_NEAR(ChiSquareQuantile(0.975, 30), 46.979, 0.05);
+}
+
+TEST(DataAssociation, ExpectedFalseInGateIsDensityTimesTheGateArea) {
+  // S = diag(sr^2, sb^2): the gate d^2 < g is an ellipse with semi-axes sqrt(g) sr and
+  // sqrt(g) sb in (range, bearing), area pi g sr sb; r dr db maps it to the plane.
+  const Eigen::Matrix2d S = Eigen::Vector2d(0.3 * 0.3, 0.05 * 0.05).asDiagonal();
+  EXPECT_NEAR(ExpectedFalseInGate(S, 8.0, 9.21, 0.002), 0.002 * M_PI * 9.21 * 0.3 * 0.05 * 8.0, 1e-15);
+  EXPECT_EQ(ExpectedFalseInGate(S, 8.0, 9.21, 0.0), 0.0);
+}
+
+TEST(DataAssociation, JointInnovationBlocksAreTheIndividualOnes) {
+  const EkfSlamState s = AmbiguousState();
+  const std::vector<Eigen::Vector2d> z = {Measure(s, 0, 0.2), Measure(s, 1, 0.2)};
+  const JointInnovation j = JointInnovationOf(s, z, kR, {{0, 0}, {1, 1}});
+  EXPECT_LT((j.S.block<2, 2>(0, 0) - InnovationCovariance(s, 0, kR)).norm(), 1e-15);
+  EXPECT_LT((j.S.block<2, 2>(2, 2) - InnovationCovariance(s, 1, kR)).norm(), 1e-15);
+  EXPECT_NEAR(j.nu.segment<2>(0).dot(j.S.block<2, 2>(0, 0).inverse() * j.nu.segment<2>(0)),
+              MahalanobisSquared(s, 0, z[0], kR), 1e-9);
+}
+
+TEST(DataAssociation, ConditionalInnovationIsTheInverseOfTheInformationBlock) {
+  // The covariance of pair q given the others is ((S^-1)_qq)^-1 (Schur complement).
+  const EkfSlamState s = AmbiguousState();
+  const std::vector<Eigen::Vector2d> z = {Measure(s, 0, 0.2), Measure(s, 1, 0.2)};
+  const Eigen::MatrixXd S = JointInnovationOf(s, z, kR, {{0, 0}, {1, 1}}).S;
+  const auto conditional = ConditionalInnovationCovariances(S);
+  ASSERT_EQ(conditional.size(), 2u);
+  const Eigen::MatrixXd information = S.inverse();
+  for (int q = 0; q < 2; ++q) {
+    const Eigen::Matrix2d expected = information.block<2, 2>(2 * q, 2 * q).inverse();
+    EXPECT_LT((conditional[q] - expected).norm(), 1e-9 * expected.norm()) << q;
+  }
+  // Both landmarks share the robot's 1 m lateral uncertainty: given one, the other's
+  // bearing is pinned down far below its own (a loop closure on two landmarks).
+  EXPECT_LT(conditional[1](1, 1), 0.01 * S(3, 3));
+  // A single pair: its own S.
+  const Eigen::MatrixXd S1 = JointInnovationOf(s, z, kR, {{0, 0}}).S;
+  EXPECT_EQ(ConditionalInnovationCovariances(S1)[0], Eigen::Matrix2d(S1));
 }
 
 }  // namespace
