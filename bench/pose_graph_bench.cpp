@@ -4,6 +4,8 @@
 // from the same start, so both are timed under the same machine load.
 //   ./build/bench/pose_graph_bench [--benchmark_filter=intel]
 // Counters: chi2_init / chi2_final (g2o convention, no kernel), iterations.
+// <graph>/<start>/slambox_marginals: the same solve plus every pose's marginal covariance
+// (compute_marginals), so its time minus slambox's is the cost of the marginals.
 #include <benchmark/benchmark.h>
 #include <ceres/ceres.h>
 
@@ -74,7 +76,7 @@ PoseGraphSolveResult SolveCeresExampleLayout(PoseGraph& graph) {
   return result;
 }
 
-enum class Method { kCeresExample, kSlambox };
+enum class Method { kCeresExample, kSlambox, kSlamboxMarginals };
 enum class Start { kFile, kOdometry, kLago };
 
 void BM_PoseGraph(benchmark::State& state, const PoseGraphFile* file, Method method, Start start) {
@@ -83,12 +85,15 @@ void BM_PoseGraph(benchmark::State& state, const PoseGraphFile* file, Method met
     PoseGraph graph = file->graph;
     if (start == Start::kOdometry) graph.poses = SpanningTreeInitialization(graph);
     if (start == Start::kLago) graph.poses = LagoInitialization(graph);
-    r = method == Method::kSlambox ? SolvePoseGraph(graph) : SolveCeresExampleLayout(graph);
+    PoseGraphSolveOptions options;
+    options.compute_marginals = method == Method::kSlamboxMarginals;
+    r = method == Method::kCeresExample ? SolveCeresExampleLayout(graph) : SolvePoseGraph(graph, options);
     benchmark::DoNotOptimize(graph.poses.data());
   }
   state.counters["chi2_init"] = r.chi2_initial;
   state.counters["chi2_final"] = r.chi2_final;
   state.counters["iterations"] = r.iterations;
+  if (method == Method::kSlamboxMarginals) state.counters["marginals"] = static_cast<double>(r.marginal_covariances.size());
   state.SetLabel(r.termination);
 }
 
@@ -120,8 +125,10 @@ int main(int argc, char** argv) {
                                                                           {"lago", Start::kLago}};
     for (const auto& [start_name, start] : starts) {
       for (const auto& [method_name, method] :
-           {std::pair<std::string, Method>{"ceres_example", Method::kCeresExample}, {"slambox", Method::kSlambox}}) {
+           {std::pair<std::string, Method>{"ceres_example", Method::kCeresExample}, {"slambox", Method::kSlambox},
+            {"slambox_marginals", Method::kSlamboxMarginals}}) {
         if (method == Method::kCeresExample && start == Start::kLago) continue;  // the baseline: plain LM
+        if (method == Method::kSlamboxMarginals && start != starts.front().second) continue;  // one start suffices
         benchmark::RegisterBenchmark((name + "/" + start_name + "/" + method_name).c_str(), BM_PoseGraph, f,
                                      method, start)
             ->Unit(benchmark::kMillisecond)

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "slam/icp_closed_form.hpp"
+#include "slam/icp_prior.hpp"
 
 namespace slambox {
 
@@ -103,10 +104,30 @@ void FindPairs(const std::vector<Eigen::Vector2d>& source, const IcpTarget& targ
     pairs.weight[i] = RobustWeight(config.robust_kernel, pairs.residual[i], config.robust_scale_m);
 }
 
+// Residual variance sigma^2 (from the RMS with N - 3 degrees of freedom unless configured)
+// and the eigenvalues of H / sigma^2 (the scan's information), a degenerate direction's
+// given the floor: its small eigenvalue is mostly normal noise, not information, so its
+// variance is huge rather than falsely centimetric.
+struct ScanInformation {
+  double sigma2 = 0.0;
+  Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();
+};
+ScanInformation ScanInformationOf(const IcpResult& r, const IcpConfig& config) {
+  const int n = r.num_inliers;
+  ScanInformation s;
+  s.sigma2 = config.sigma_residual_m > 0 ? config.sigma_residual_m * config.sigma_residual_m
+                                         : r.rms_residual_m * r.rms_residual_m * n / std::max(1, n - 3);
+  const double floor = 1e-9 * std::max(1, n);
+  const double degenerate_below = config.degeneracy_eigenvalue_ratio * n;
+  for (int k = 0; k < 3; ++k)
+    s.eigenvalues(k) = r.eigenvalues(k) < degenerate_below ? floor : std::max(r.eigenvalues(k), floor);
+  return s;
+}
+
 }  // namespace
 
 IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarget& target, const SE2& guess,
-                      const IcpConfig& config) {
+                      const IcpConfig& config, const IcpPrior* prior) {
   IcpResult result;
   result.T_target_source = guess;
   result.num_source = static_cast<int>(source.size());
@@ -140,9 +161,23 @@ IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarge
     for (size_t i = 0; i < pairs.count; ++i) sum_e2 += pairs.residual[i] * pairs.residual[i];
     result.rms_residual_m = std::sqrt(sum_e2 / result.num_inliers);
 
-    const SE2 T_new = config.metric == IcpMetric::kPointToPoint
+    SE2 T_new = config.metric == IcpMetric::kPointToPoint
                           ? AlignPointToPoint(pairs.Source(), pairs.Target(), pairs.Weight())
                           : SolvePointToLine(sums, T);
+    if (prior) {  // the scan's information H / sigma^2 (degenerate directions floored) against the prior's
+      // H sums robust weights, so sigma^2 is the weighted residual variance: outliers the
+      // kernel has all but dropped must not inflate it (the unweighted RMS would).
+      double sum_w = 0, sum_we2 = 0;
+      for (size_t i = 0; i < pairs.count; ++i) {
+        sum_w += pairs.weight[i];
+        sum_we2 += pairs.weight[i] * pairs.residual[i] * pairs.residual[i];
+      }
+      IcpConfig weighted = config;
+      if (weighted.sigma_residual_m <= 0) weighted.sigma_residual_m = std::sqrt(std::max(sum_we2 / std::max(sum_w, 1e-12), 1e-12));
+      const ScanInformation si = ScanInformationOf(result, weighted);
+      const Eigen::Matrix3d A = result.eigenvectors * (si.eigenvalues / si.sigma2).asDiagonal() * result.eigenvectors.transpose();
+      T_new = FuseWithPrior(T_new, A, *prior);
+    }
     Eigen::Vector3d step(T_new.x - T.x, T_new.y - T.y, NormalizeAngle(T_new.theta - T.theta));
     if (config.remap_degenerate) step -= degenerate_mask * step;  // Zhang 2016: no motion along weak directions
     T = SE2(T.x + step.x(), T.y + step.y(), T.theta + step.z());
@@ -155,20 +190,12 @@ IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarge
   result.T_target_source = T;
   result.degenerate = result.degenerate_dimensions > 0;
   result.degenerate_direction = result.degenerate ? Eigen::Vector3d(result.eigenvectors.col(0)) : Eigen::Vector3d::Zero();
-  // Covariance sigma^2 H^-1 with sigma^2 from the residuals (N - 3 degrees of freedom).
-  const int n = result.num_inliers;
-  const double sigma2 = config.sigma_residual_m > 0 ? config.sigma_residual_m * config.sigma_residual_m
-                                                    : result.rms_residual_m * result.rms_residual_m *
-                                                          n / std::max(1, n - 3);
-  // A degenerate direction's small eigenvalue is mostly normal noise, not information:
-  // give it the floor so its variance is huge rather than falsely centimetric.
-  const double floor = 1e-9 * std::max(1, n);
-  const double degenerate_below = config.degeneracy_eigenvalue_ratio * n;
+  // Covariance sigma^2 H^-1 over the scan's information (no prior in it).
+  const ScanInformation si = ScanInformationOf(result, config);
   result.covariance.setZero();
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d v = result.eigenvectors.col(k);
-    const double lambda = result.eigenvalues(k) < degenerate_below ? floor : std::max(result.eigenvalues(k), floor);
-    result.covariance += v * v.transpose() * sigma2 / lambda;
+    result.covariance += v * v.transpose() * si.sigma2 / si.eigenvalues(k);
   }
   return result;
 }

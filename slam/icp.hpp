@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/se2.hpp"
+#include "slam/icp_prior.hpp"
 #include "slam/icp_target.hpp"
 
 namespace slambox {
@@ -61,8 +62,12 @@ struct IcpResult {
 };
 
 /// Registers `source` (its own frame) to `target` starting from the guess (e.g. odometry).
+/// With a prior (slam/icp_prior.hpp), each iteration's solution for fixed pairs is fused
+/// with it, weighted by the scan's information H / sigma^2; the result's covariance and
+/// Hessian stay the scan's own.
 IcpResult RegisterIcp(const std::vector<Eigen::Vector2d>& source, const IcpTarget& target,
-                      const SE2& T_target_source_guess, const IcpConfig& config);
+                      const SE2& T_target_source_guess, const IcpConfig& config,
+                      const IcpPrior* prior = nullptr);
 
 /// IRLS weight of a residual e for the kernel (1 at e = 0).
 double RobustWeight(IcpRobustKernel kernel, double e, double scale);

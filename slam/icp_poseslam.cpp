@@ -32,6 +32,7 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("adaptive_gate", c.adaptive_gate, "-", "KISS-ICP adaptive correspondence gate for the front end");
   b.Bind("local_map_keyframes", c.local_map_keyframes, "-", "front end registers to this many keyframes before the latest too (0 = latest only)", AtLeast(0));
   b.Bind("local_map_voxel_m", c.local_map_voxel_m, "m", "voxel size of the front end's local map", Above(0));
+  b.Bind("odometry_prior", c.odometry_prior, "-", "front-end ICP weighs the odometry guess (motion-model covariance) as a prior");
   b.Bind("guess_disagreement_m", c.guess_disagreement_m, "m", "odometry and constant-velocity guesses farther apart than this: ICP from both", Above(0));
   b.Bind("guess_disagreement_deg", c.guess_disagreement_deg, "deg", "... or turned farther apart than this", Above(0));
   b.Bind("guess_fit_radius_m", c.guess_fit_radius_m, "m", "between two ICP results, the one with more scan points this close to the target wins", Above(0));
@@ -97,6 +98,7 @@ void IcpPoseSlam::Start(const StreamHeader& header) {
   guesses_switched_ = 0;
   odometry_cov_.setZero();
   relative_cov_.setZero();
+  last_scan_cov_.setZero();
   path_m_ = 0.0;
   keyframes_.clear();
   graph_ = PoseGraph{};
@@ -138,7 +140,17 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
   IcpConfig icp = config_.local_map_keyframes > 0 ? local_map_icp_ : icp_;
   if (config_.adaptive_gate) icp.max_correspondence_m = CorrespondenceGate(gate_);
   SE2 guess = T_kf_robot_;
-  IcpResult r = RegisterIcp(points.points, keyframe_target_, guess, icp);
+  const bool has_noise_model = alpha_ != std::array<double, 4>{};
+  std::optional<IcpPrior> prior;
+  if (config_.odometry_prior && has_noise_model) {
+    const OdometryIncrement u = Decompose(Between(T_kf_last_scan_, guess));
+    const MotionPrediction p = PredictMotion(T_kf_last_scan_, u);
+    const Eigen::Matrix3d cov = p.J_pose_pose * last_scan_cov_ * p.J_pose_pose.transpose() +
+                                p.J_pose_increment * IncrementCovariance(u, alpha_) * p.J_pose_increment.transpose();
+    // Floored so that it stays invertible (a robot at rest has a zero odometry covariance).
+    prior = IcpPrior{guess, (cov + Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix()).inverse()};
+  }
+  IcpResult r = RegisterIcp(points.points, keyframe_target_, guess, icp, prior ? &*prior : nullptr);
   const SE2 cv_guess = T_kf_last_scan_ * T_last_scan_motion_;
   const SE2 gap = Between(cv_guess, guess);
   if (gap.translation().norm() > config_.guess_disagreement_m ||
@@ -157,7 +169,7 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
   if (ok) {
     if (config_.adaptive_gate) UpdateThreshold(gate_, T_kf_last_scan_.inverse() * guess, T_kf_last_scan_.inverse() * r.T_target_source);
     T_kf_robot_ = r.T_target_source;
-    if (config_.compute_covariance) relative_cov_ = IcpEdgeInformation(r, odometry_cov_, Caps()).inverse();
+    if (config_.compute_covariance || config_.odometry_prior) relative_cov_ = IcpEdgeInformation(r, odometry_cov_, Caps()).inverse();
   }
   auto& d = estimate_.diagnostics;
   d["icp_iterations"].emplace_back(scan.t_s, r.iterations);
@@ -166,6 +178,7 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
   d["degenerate"].emplace_back(scan.t_s, r.degenerate ? 1.0 : 0.0);
   T_last_scan_motion_ = Between(T_kf_last_scan_, T_kf_robot_);
   T_kf_last_scan_ = T_kf_robot_;
+  last_scan_cov_ = relative_cov_;
   const bool far = T_kf_robot_.translation().norm() >= config_.keyframe_distance_m ||
                    std::abs(T_kf_robot_.theta) >= config_.keyframe_angle_deg * kDegToRad;
   // A keyframe ICP cannot reach any more (sparse or changed surroundings) is replaced all
@@ -215,6 +228,7 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
   T_kf_robot_ = T_kf_last_scan_ = SE2();
   odometry_cov_.setZero();
   relative_cov_.setZero();
+  last_scan_cov_.setZero();
   RecordPose(scan.t_s);
   if (k > 0) CloseLoops(scan.t_s);
 }

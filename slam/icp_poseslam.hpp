@@ -42,6 +42,14 @@ struct IcpPoseSlamConfig {
   /// then 85 deg at once); from such a guess ICP settles in a wrong minimum. When the
   /// odometry guess and the constant-velocity guess (the last scan-to-scan motion again)
   /// differ by more than this, ICP starts from both and the better fit is kept.
+  /// ICP against the guess as a prior too: the pose relative to the keyframe (the last
+  /// scan's ICP composed with the wheel odometry since) with its covariance (the last scan's
+  /// capped ICP covariance grown by the stream's odometry noise model, the motion since the
+  /// last scan taken as one increment: the model's variance grows with rot^2 per increment,
+  /// so summing it over dense odometry messages would make the prior depend on how often
+  /// odometry was sampled); ambiguous directions then follow the odometry. Off without an
+  /// odometry noise model.
+  bool odometry_prior = false;
   double guess_disagreement_m = 0.2;      ///< [m] ... in translation
   double guess_disagreement_deg = 5.0;    ///< [deg] ... or in heading
   double guess_fit_radius_m = 0.1;        ///< [m] fit = fraction of scan points this close to the local map
@@ -69,7 +77,7 @@ struct IcpPoseSlamConfig {
   double source_voxel_m = 0.0;           ///< [m] subsample scans (0 = every valid beam)
   double map_voxel_m = 0.05;             ///< [m] voxel size of Estimate::map_points
   double grid_resolution_m = 0.05;       ///< [m] occupancy grid cell (0 = no grid)
-  bool compute_covariance = true;        ///< pose covariances for NEES (one ceres::Covariance at the end)
+  bool compute_covariance = true;        ///< pose covariances for NEES (one selected inversion at the end)
 };
 void BindParams(IcpPoseSlamConfig& c, ParamBinder& b);
 
@@ -119,6 +127,7 @@ class IcpPoseSlam : public SlamModule {
   int guesses_switched_ = 0;       ///< scans where the constant-velocity guess fitted better
   Eigen::Matrix3d odometry_cov_ = Eigen::Matrix3d::Zero();  ///< of T_kf_robot_ by the motion model
   Eigen::Matrix3d relative_cov_ = Eigen::Matrix3d::Zero();  ///< of T_kf_robot_: ICP at scans, odometry after
+  Eigen::Matrix3d last_scan_cov_ = Eigen::Matrix3d::Zero();  ///< of T_kf_last_scan_ (odometry prior)
   double path_m_ = 0.0;
   IcpTarget keyframe_target_;
   std::vector<Keyframe> keyframes_;

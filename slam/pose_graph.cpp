@@ -16,6 +16,7 @@
 #include "slam/angle_manifold.hpp"
 #include "slam/dcs_loss.hpp"
 #include "slam/pose_graph_cost.hpp"
+#include "slam/sparse_marginals.hpp"
 
 namespace slambox {
 
@@ -91,23 +92,24 @@ void ValidateGraph(const PoseGraph& graph, const PoseGraphSolveOptions& options,
 
 // Diagonal blocks of the inverse of J^T J at the solution: the marginal covariance of each
 // pose under the Gaussian (Laplace) approximation of the posterior, the anchor fixed.
+// Selected inversion of the sparse Cholesky factor (slam/sparse_marginals.hpp); empty
+// when J^T J is not positive definite (a pose the edges do not determine).
 std::vector<Eigen::Matrix3d> MarginalCovariances(ceres::Problem& problem, std::vector<double>& x, size_t anchor) {
   const size_t n = x.size() / 3;
   std::vector<Eigen::Matrix3d> out(n, Eigen::Matrix3d::Zero());
-  std::vector<std::pair<const double*, const double*>> blocks;
+  std::vector<double*> blocks;
+  std::vector<size_t> pose_of_block;
+  std::vector<std::pair<int, int>> requested;
   for (size_t i = 0; i < n; ++i)
-    if (i != anchor && problem.HasParameterBlock(&x[3 * i])) blocks.emplace_back(&x[3 * i], &x[3 * i]);
+    if (i != anchor && problem.HasParameterBlock(&x[3 * i])) {
+      requested.emplace_back(static_cast<int>(3 * blocks.size()), 3);
+      blocks.push_back(&x[3 * i]);
+      pose_of_block.push_back(i);
+    }
   if (blocks.empty()) return out;
-  ceres::Covariance::Options cov_options;
-  cov_options.algorithm_type = ceres::SPARSE_QR;
-  cov_options.num_threads = 1;
-  ceres::Covariance covariance(cov_options);
-  if (!covariance.Compute(blocks, &problem)) return {};
-  for (const auto& [block, same] : blocks) {
-    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> C;
-    covariance.GetCovarianceBlock(block, block, C.data());
-    out[static_cast<size_t>(block - x.data()) / 3] = C;
-  }
+  const DiagonalBlocksOfInverse inverse = InverseDiagonalBlocks(InformationMatrix(problem, blocks), requested);
+  if (!inverse.ok) return {};
+  for (size_t b = 0; b < blocks.size(); ++b) out[pose_of_block[b]] = inverse.blocks[b];
   return out;
 }
 

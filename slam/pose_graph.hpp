@@ -34,8 +34,9 @@ struct PoseGraphSolveOptions {
   double kernel_scale = 1.0;  ///< Huber/Cauchy scale on the whitened residual; DCS's Phi
   int max_iterations = 100;
   int num_threads = 1;
-  /// Also compute every pose's marginal covariance at the solution (ceres::Covariance,
-  /// sparse QR; the robust kernels' weights included). Costs about one more solve.
+  /// Also compute every pose's marginal covariance at the solution (selected inversion of
+  /// the sparse Cholesky factor of J^T J, slam/sparse_marginals.hpp; the robust kernels'
+  /// weights included). Costs about one more linear solve.
   bool compute_marginals = false;
 };
 
@@ -52,7 +53,7 @@ struct PoseGraphSolveResult {
   std::vector<double> edge_weights;
   /// With compute_marginals: per pose, its 3x3 marginal covariance over (x, y, theta)
   /// given all edges, the anchor held fixed (zero for the anchor and unconnected poses).
-  /// Empty when not requested or when Ceres could not compute it (rank-deficient).
+  /// Empty when not requested or when J^T J is not positive definite (rank-deficient).
   std::vector<Eigen::Matrix3d> marginal_covariances;
 };
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 namespace slambox {
@@ -44,6 +45,23 @@ TEST(OdometryModel, DecomposeReadsBackwardMotion) {
   EXPECT_NEAR(s.rot1, 0.0, 1e-15);
   EXPECT_NEAR(s.trans, -1e-3, 1e-15);
   EXPECT_NEAR(s.rot2, 0.02, 1e-15);
+}
+
+TEST(OdometryModel, DecomposeTakesTheShorterSecondRotation) {
+  // rot2 = theta - rot1 wrapped to [-pi, pi): 3.0 + atan(0.5) = 3.46 rad is -2.82 rad, and the
+  // noise model's a1 rot2^2 term uses the shorter rotation (Thrun Table 5.6 with wrapped angles).
+  const OdometryIncrement u = Decompose(SE2(1.0, -0.5, 3.0));
+  EXPECT_NEAR(u.rot1, -std::atan(0.5), 1e-15);
+  EXPECT_NEAR(u.rot2, 3.0 + std::atan(0.5) - 2 * M_PI, 1e-12);
+  const Eigen::Matrix3d M = IncrementCovariance(u, {0.1, 0.0, 0.0, 0.0});
+  EXPECT_NEAR(M(2, 2), 0.1 * std::pow(3.0 + std::atan(0.5) - 2 * M_PI, 2), 1e-12);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> x(-3.0, 3.0), theta(-M_PI, M_PI);
+  for (int i = 0; i < 200; ++i) {
+    const OdometryIncrement r = Decompose(SE2(x(rng), x(rng), theta(rng)));
+    EXPECT_GE(r.rot2, -M_PI);
+    EXPECT_LT(r.rot2, M_PI);
+  }
 }
 
 TEST(OdometryModel, JacobiansMatchFiniteDifferencesIncludingNearPi) {

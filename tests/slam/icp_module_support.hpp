@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/slam_module.hpp"
+#include "tests/support/accuracy_bound.hpp"
 #include "tests/support/synthetic_scan.hpp"
 #include "tests/support/synthetic_stream.hpp"
 
