@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of every reader (tests/fuzz/, libFuzzer + ASan + UBSan).
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (default 600 s each, every target)
+#        scripts/fuzz.sh --smoke [TARGET...]     CI's run: each harness replays its committed
+#          seeds and then 20000 mutations of them from a fixed seed (-seed=1 -runs=...), in a
+#          fresh corpus folder: the same executions on every run, so a smoke failure is a
+#          real, reproducible finding, never a lucky draw.
 # Builds build-fuzz/ with clang-14, then runs each harness for SECONDS on its corpus:
 # the committed seeds tests/fuzz/corpus/NAME/ (read only) plus build-fuzz/corpus/NAME/,
 # where new inputs are kept between runs. A crash, sanitizer report, leak or an input
 # taking over 1 s is written to build-fuzz/crashes/NAME/ and fails the script.
-# One harness at a time (the machine is shared); CI runs `scripts/fuzz.sh 20`.
+# One harness at a time (the machine is shared); CI runs `scripts/fuzz.sh --smoke`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds=${1:-600}
-shift || true
+smoke=""
+if [ "${1:-}" = "--smoke" ]; then smoke=1; shift; seconds=0; else seconds=${1:-600}; shift || true; fi
 all=(fuzz_stream fuzz_scenario fuzz_sweep fuzz_pose_graph fuzz_carmen fuzz_victoria_park fuzz_tum
   fuzz_relations fuzz_exec_answer)
 targets=("$@")
@@ -25,21 +29,31 @@ status=0
 for t in "${targets[@]}"; do
   name=${t#fuzz_}
   mkdir -p "build-fuzz/corpus/$name" "build-fuzz/crashes/$name"
+  corpus="build-fuzz/corpus/$name"
+  budget=(-max_total_time="$seconds")
+  if [ -n "$smoke" ]; then
+    corpus="build-fuzz/smoke-corpus/$name"
+    rm -rf "$corpus" && mkdir -p "$corpus"
+    budget=(-runs=20000 -seed=1)
+  fi
+  # -timeout: an input over 1 s is a finding (issue 17's target); the smoke allows 10 s so
+  # that a loaded CI machine cannot turn a slow moment into a failure.
+  timeout=1
+  [ -n "$smoke" ] && timeout=10
   dict=()
   [ -f "tests/fuzz/$name.dict" ] && dict=("-dict=tests/fuzz/$name.dict")
   log="build-fuzz/$t.log"
-  echo "fuzz: $t for ${seconds} s"
-  # -timeout=1: an input over 1 s is a finding (issue 17's target); -rss_limit_mb: a
-  # reader asking for more memory than that is one too.
+  if [ -n "$smoke" ]; then echo "fuzz: $t smoke (seeds + 20000 fixed-seed mutations)"; else echo "fuzz: $t for ${seconds} s"; fi
+  # -rss_limit_mb: a reader asking for more memory than that is a finding too.
   if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    "build-fuzz/tests/fuzz/$t" -max_total_time="$seconds" -timeout=1 -rss_limit_mb=2048 -max_len=65536 \
+    "build-fuzz/tests/fuzz/$t" "${budget[@]}" -timeout="$timeout" -rss_limit_mb=2048 -max_len=65536 \
     -print_final_stats=1 -artifact_prefix="build-fuzz/crashes/$name/" "${dict[@]}" \
-    "build-fuzz/corpus/$name" "tests/fuzz/corpus/$name" >"$log" 2>&1; then
+    "$corpus" "tests/fuzz/corpus/$name" >"$log" 2>&1; then
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
     cov=$(grep -oE '^#[0-9]+[[:space:]]+DONE[[:space:]]+cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 |
       sed -E 's/.*cov: ([0-9]+) ft: ([0-9]+)/cov \1, ft \2/' || true)
-    corpus=$(find "build-fuzz/corpus/$name" -type f | wc -l)
-    echo "fuzz: $t ok: $execs executions, ${cov:-cov ?}, $corpus corpus entries kept"
+    kept=$(find "$corpus" -type f | wc -l)
+    echo "fuzz: $t ok: $execs executions, ${cov:-cov ?}, $kept corpus entries kept"
   else
     status=1
     echo "fuzz: $t FOUND A PROBLEM (input in build-fuzz/crashes/$name/):"
