@@ -2,9 +2,9 @@
 # Coverage-guided fuzzing of every reader (tests/fuzz/, libFuzzer + ASan + UBSan).
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (default 600 s each, every target)
 #        scripts/fuzz.sh --smoke [TARGET...]     CI's run: each harness replays its committed
-#          seeds and then 20000 mutations of them from a fixed seed (-seed=1 -runs=...), in a
-#          fresh corpus folder: the same executions on every run, so a smoke failure is a
-#          real, reproducible finding, never a lucky draw.
+#          seeds and then up to 20000 mutations of them from a fixed seed (-seed=1), at most
+#          30 s, in a fresh corpus folder: the same sequence of inputs on every run (a slower
+#          machine stops earlier in it), so a smoke failure is a reproducible finding.
 # Builds build-fuzz/ with clang-14, then runs each harness for SECONDS on its corpus:
 # the committed seeds tests/fuzz/corpus/NAME/ (read only) plus build-fuzz/corpus/NAME/,
 # where new inputs are kept between runs. A crash, sanitizer report, leak or an input
@@ -34,7 +34,7 @@ for t in "${targets[@]}"; do
   if [ -n "$smoke" ]; then
     corpus="build-fuzz/smoke-corpus/$name"
     rm -rf "$corpus" && mkdir -p "$corpus"
-    budget=(-runs=20000 -seed=1)
+    budget=(-runs=20000 -seed=1 -max_total_time=30)
   fi
   # -timeout: an input over 1 s is a finding (issue 17's target); the smoke allows 10 s so
   # that a loaded CI machine cannot turn a slow moment into a failure.
@@ -43,7 +43,7 @@ for t in "${targets[@]}"; do
   dict=()
   [ -f "tests/fuzz/$name.dict" ] && dict=("-dict=tests/fuzz/$name.dict")
   log="build-fuzz/$t.log"
-  if [ -n "$smoke" ]; then echo "fuzz: $t smoke (seeds + 20000 fixed-seed mutations)"; else echo "fuzz: $t for ${seconds} s"; fi
+  if [ -n "$smoke" ]; then echo "fuzz: $t smoke (seeds + up to 20000 fixed-seed mutations, 30 s at most)"; else echo "fuzz: $t for ${seconds} s"; fi
   # -rss_limit_mb: a reader asking for more memory than that is a finding too.
   if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "build-fuzz/tests/fuzz/$t" "${budget[@]}" -timeout="$timeout" -rss_limit_mb=2048 -max_len=65536 \
