@@ -73,8 +73,9 @@ LoopClosureResult EvaluateLoopClosures(const std::vector<LoopClosureRecord>& clo
   r.precision = r.accepted ? static_cast<double>(r.accepted_correct) / r.accepted : nan;
   const auto episodes = RevisitEpisodes(gt, o);
   r.revisit_episodes = static_cast<int>(episodes.size());
-  for (const auto& [t0, t1] : episodes)
-    if (std::any_of(correct_times.begin(), correct_times.end(), [&](double t) { return t >= t0 && t <= t1; }))
+  for (const auto& episode : episodes)
+    if (std::any_of(correct_times.begin(), correct_times.end(),
+                    [&](double t) { return t >= episode.first && t <= episode.second; }))
       ++r.recalled_episodes;
   r.recall = r.revisit_episodes ? static_cast<double>(r.recalled_episodes) / r.revisit_episodes : nan;
   return r;

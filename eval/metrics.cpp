@@ -135,6 +135,8 @@ template <class... F>
 struct Overloaded : F... {
   using F::operator()...;
 };
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;  // C++20 deduces it; clang 14 (the fuzz build) needs the guide
 
 [[noreturn]] void WrongType(const std::string& path, const std::string& key, const char* expected) {
   throw InputError(path, 0, "metric '" + key + "' is not " + expected, "re-run the command that wrote the file");
@@ -207,7 +209,10 @@ Metrics MetricsFromJson(const json& entry, const std::string& path) {
   if (!entry.is_object()) throw InputError(path, 0, "an algorithm's metrics are not an object", "re-run `slambox run`");
   Metrics m;
   m.scored = false;
-  for (const auto& [key, value] : entry.items()) {
+  for (const auto& item : entry.items()) {
+    // Not a structured binding: the lambdas below capture them, which clang 14 refuses.
+    const std::string& key = item.key();
+    const json& value = item.value();
     const MetricDescriptor* d = FindMetric(key);
     if (!d) continue;  // a key this version does not know
     if (key != "status" && key != "reason") m.scored = true;
