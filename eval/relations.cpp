@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 
 namespace slambox {
 
@@ -34,6 +35,7 @@ std::vector<Relation> ParseRelations(const std::string& text, const std::string&
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
+    limits::CheckLineLength(name, number, line.size());
     std::istringstream fields(line);
     std::vector<std::string> tokens;
     for (std::string t; fields >> t;) tokens.push_back(t);
@@ -48,6 +50,19 @@ std::vector<Relation> ParseRelations(const std::string& text, const std::string&
         throw InputError(name, number, "field " + std::to_string(i + 1) + " is '" + tokens[i] + "', not a finite number",
                          kFix);
     }
+    // Bounds as every reader has them (core/limits.hpp): a finite 1e308 would overflow the
+    // relation's error to infinity (found by tests/fuzz/fuzz_relations).
+    const auto out_of_range = [&](int i, double limit, const char* what) {
+      if (std::abs(v[i]) > limit)
+        throw InputError(name, number,
+                         "field " + std::to_string(i + 1) + " = " + tokens[i] + " is out of range (" + what + " within ±" +
+                             std::to_string(static_cast<long long>(limit)) + ")",
+                         kFix);
+    };
+    out_of_range(0, limits::kMaxTimestampS, "times [s]");
+    out_of_range(1, limits::kMaxTimestampS, "times [s]");
+    for (int i = 2; i <= 4; ++i) out_of_range(i, limits::kMaxCoordinateM, "displacements [m]");
+    for (int i = 5; i <= 7; ++i) out_of_range(i, limits::kMaxAngleRad, "angles [rad]");
     out.push_back({v[0], v[1], SE2(v[2], v[3], v[7]), number});
   }
   if (out.empty()) throw InputError(name, 0, "no relation in the file", kFix);

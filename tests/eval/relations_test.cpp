@@ -50,6 +50,30 @@ TEST(Relations, BadLinesNameTheFileAndLine) {
   EXPECT_THROW(ReadRelations("/nonexistent/x.relations"), InputError);
 }
 
+TEST(Relations, AbsurdValuesAreRefusedAtTheirLine) {
+  // Found by tests/fuzz/fuzz_relations: a finite -0.91e308 displacement overflowed the
+  // relation error to infinity. Every field is now bounded (core/limits.hpp).
+  const auto refused = [](const std::string& text, const std::string& field) {
+    try {
+      ParseRelations(text, "absurd.relations");
+      ADD_FAILURE() << text << ": accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), 2) << e.what();
+      EXPECT_NE(std::string(e.what()).find("field " + field), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+    }
+  };
+  const std::string good = "0.1 0.5 0.2 -0.9 0 0 0 0.3\n";
+  refused(good + "0.1 0.5 0.2 -0.91e308 0 0 0 0.3\n", "4");
+  refused(good + "2e10 0.5 0.2 0 0 0 0 0.3\n", "1");
+  refused(good + "0.1 0.5 0.2 0 0 0 0 1e5\n", "8");
+  refused(good + "0.1 0.5 0.2 0 1e6 0 0 0\n", "5");
+  // The largest accepted values score finitely.
+  const auto relations = ParseRelations(good + "0.1 0.5 1e5 -1e5 0 0 0 1e4\n", "edge.relations");
+  const std::vector<StampedPose> trajectory = {{0.1, SE2{}}, {0.5, SE2{1.0, 0.0, 0.0}}};
+  for (double e : ComputeRelationErrors(relations, trajectory).translation_m) EXPECT_TRUE(std::isfinite(e));
+}
+
 TEST(Relations, HandComputedErrorsInFileOrderWithTheTimeOrigin) {
   // Log clock = stream clock + 1000. Relation 0 is exact: x_0^-1 x_1 = (1, 0, 90°).
   // Relation 1 (listed first: unsorted): x_1^-1 x_2 = (1, 0, 89°) (x_2 - x_1 = (0, 1) seen
