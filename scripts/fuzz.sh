@@ -3,8 +3,8 @@
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (default 600 s each, every target)
 #        scripts/fuzz.sh --smoke [TARGET...]     CI's run: each harness replays its committed
 #          seeds and then up to 20000 mutations of them from a fixed seed (-seed=1), at most
-#          30 s, in a fresh corpus folder: the same sequence of inputs on every run (a slower
-#          machine stops earlier in it), so a smoke failure is a reproducible finding.
+#          30 s, in a fresh corpus folder. Coverage feedback makes the sequence vary a little
+#          between runs; a finding is kept in build-fuzz/crashes/NAME/ to replay.
 # Builds build-fuzz/ with clang-14, then runs each harness for SECONDS on its corpus:
 # the committed seeds tests/fuzz/corpus/NAME/ (read only) plus build-fuzz/corpus/NAME/,
 # where new inputs are kept between runs. A crash, sanitizer report, leak or an input
