@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of every reader (tests/fuzz/, libFuzzer + ASan + UBSan).
-# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (default 600 s each, every target)
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (default 600 s each, every target; a harness
+#          also stops after FUZZ_RUNS executions, default 1000000: issue 17's "1 M executions
+#          or 10 min", whichever comes first; FUZZ_RUNS=-1 for no cap)
 #        scripts/fuzz.sh --smoke [TARGET...]     CI's run: each harness replays its committed
 #          seeds and then up to 20000 mutations of them from a fixed seed (-seed=1), at most
 #          30 s, in a fresh corpus folder. Coverage feedback makes the sequence vary a little
@@ -16,6 +18,9 @@ smoke=""
 if [ "${1:-}" = "--smoke" ]; then smoke=1; shift; seconds=0; else seconds=${1:-600}; shift || true; fi
 all=(fuzz_stream fuzz_scenario fuzz_sweep fuzz_pose_graph fuzz_carmen fuzz_victoria_park fuzz_tum
   fuzz_relations fuzz_exec_answer)
+# fuzz_rawlog runs only when named: MRPT's deserializer allocates what a length field asks
+# for before reading (tests/fuzz/fuzz_rawlog.cpp), so it ends in an out-of-memory report
+# within minutes, a limit of MRPT's that slambox cannot set.
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
 command -v clang++-14 >/dev/null || { echo "fuzz: clang++-14 missing; run scripts/setup.sh" >&2; exit 1; }
@@ -30,7 +35,7 @@ for t in "${targets[@]}"; do
   name=${t#fuzz_}
   mkdir -p "build-fuzz/corpus/$name" "build-fuzz/crashes/$name"
   corpus="build-fuzz/corpus/$name"
-  budget=(-max_total_time="$seconds")
+  budget=(-max_total_time="$seconds" -runs="${FUZZ_RUNS:-1000000}")
   if [ -n "$smoke" ]; then
     corpus="build-fuzz/smoke-corpus/$name"
     rm -rf "$corpus" && mkdir -p "$corpus"
@@ -43,7 +48,8 @@ for t in "${targets[@]}"; do
   dict=()
   [ -f "tests/fuzz/$name.dict" ] && dict=("-dict=tests/fuzz/$name.dict")
   log="build-fuzz/$t.log"
-  if [ -n "$smoke" ]; then echo "fuzz: $t smoke (seeds + up to 20000 fixed-seed mutations, 30 s at most)"; else echo "fuzz: $t for ${seconds} s"; fi
+  if [ -n "$smoke" ]; then echo "fuzz: $t smoke (seeds + up to 20000 fixed-seed mutations, 30 s at most)"; else echo "fuzz: $t for ${seconds} s or ${FUZZ_RUNS:-1000000} executions"; fi
+  started=$SECONDS
   # -rss_limit_mb: a reader asking for more memory than that is a finding too.
   if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "build-fuzz/tests/fuzz/$t" "${budget[@]}" -timeout="$timeout" -rss_limit_mb=2048 -max_len=65536 \
@@ -53,7 +59,7 @@ for t in "${targets[@]}"; do
     cov=$(grep -oE '^#[0-9]+[[:space:]]+DONE[[:space:]]+cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 |
       sed -E 's/.*cov: ([0-9]+) ft: ([0-9]+)/cov \1, ft \2/' || true)
     kept=$(find "$corpus" -type f | wc -l)
-    echo "fuzz: $t ok: $execs executions, ${cov:-cov ?}, $kept corpus entries kept"
+    echo "fuzz: $t ok: $execs executions in $((SECONDS - started)) s, ${cov:-cov ?}, $kept corpus entries kept"
   else
     status=1
     echo "fuzz: $t FOUND A PROBLEM (input in build-fuzz/crashes/$name/):"

@@ -1,5 +1,7 @@
 #include "slam/mrpt/mrpt_convert.hpp"
 
+#include <cstring>
+
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/random/RandomGenerators.h>
 
@@ -96,6 +98,17 @@ mrpt::obs::CObservation2DRangeScan ToMrptScanForGrid(const LaserScanEvent& scan,
   return ToMrptScan(fine, sigma_range_m);
 }
 
+namespace {
+/// A bool field as MRPT deserialized it: the file's byte, copied without a check, so any of
+/// 0-255 (fuzz_rawlog found 255, which is undefined behaviour to read as a bool). Its
+/// object representation, read as a byte, is what the file meant: nonzero = true.
+bool StoredBool(const bool& b) {
+  unsigned char byte = 0;
+  std::memcpy(&byte, &b, 1);
+  return byte != 0;
+}
+}  // namespace
+
 LaserScanEvent FromMrptScan(const mrpt::obs::CObservation2DRangeScan& scan, double t_s) {
   LaserScanEvent out;
   const size_t n = scan.getScanSize();
@@ -106,8 +119,9 @@ LaserScanEvent FromMrptScan(const mrpt::obs::CObservation2DRangeScan& scan, doub
   // Beams start at -aperture/2 (right to left) or +aperture/2 (left to right); we keep
   // increasing angles, so a left-to-right scan is reversed.
   out.angle_min_rad = scan.sensorPose.yaw() - aperture_rad / 2;
+  const bool right_to_left = StoredBool(scan.rightToLeft);
   for (size_t k = 0; k < n; ++k) {
-    const size_t i = scan.rightToLeft ? k : n - 1 - k;
+    const size_t i = right_to_left ? k : n - 1 - k;
     out.ranges_m.push_back(scan.getScanRange(i));
     out.valid.push_back(scan.getScanRangeValidity(i) ? 1 : 0);
   }

@@ -17,7 +17,8 @@ std::vector<slambox::ModuleInfo> MrptModules() {
 SLAMBOX_PLUGIN("slambox-mrpt", MrptModules)
 
 extern "C" __attribute__((visibility("default"))) const slambox::LogFormatEntry* slambox_rawlog_format() {
-  static const slambox::LogFormatEntry entry{SLAMBOX_API_VERSION, &slambox::mrpt_bridge::ReadRawlog,
+  using Read = slambox::LaserLog (*)(const std::string&);
+  static const slambox::LogFormatEntry entry{SLAMBOX_API_VERSION, static_cast<Read>(&slambox::mrpt_bridge::ReadRawlog),
                                              &slambox::mrpt_bridge::WriteRawlog};
   return &entry;
 }

@@ -9,10 +9,14 @@
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CRawlog.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3D.h>
+#include <mrpt/serialization/CArchive.h>
 #include <stdexcept>
+#include <vector>
+#include <zlib.h>
 
 #include "core/error.hpp"
 #include "core/limits.hpp"
@@ -101,34 +105,79 @@ struct Reader {
   }
 };
 
+/// The file's bytes, gunzipped when it is gzip-compressed (MRPT writes rawlogs either way;
+/// zlib's gzread passes an uncompressed file through), refused once more than `max_bytes`
+/// have come out, so a small file that inflates without end never fills the memory.
+std::string ReadRawlogBytes(const std::string& path, std::uint64_t max_bytes) {
+  gzFile file = gzopen(path.c_str(), "rb");
+  if (file == nullptr) throw InputError(path, 0, "cannot open the rawlog", "check the path and its permissions");
+  std::string bytes;
+  std::vector<char> chunk(1 << 20);
+  for (;;) {
+    const int got = gzread(file, chunk.data(), static_cast<unsigned>(chunk.size()));
+    if (got < 0) {
+      int code = 0;
+      const std::string why = gzerror(file, &code);
+      gzclose(file);
+      throw InputError(path, 0, "corrupt compressed data (zlib: " + why + ")", kFix);
+    }
+    if (got == 0) break;
+    if (bytes.size() + static_cast<std::size_t>(got) > max_bytes) {
+      gzclose(file);
+      throw InputError(path, 0, "more than " + std::to_string(max_bytes) + " bytes (decompressed)",
+                       "split the rawlog (RawLogViewer or rawlog-edit --cut)");
+    }
+    bytes.append(chunk.data(), static_cast<std::size_t>(got));
+  }
+  gzclose(file);
+  return bytes;
+}
+
 }  // namespace
 
-LaserLog ReadRawlog(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open the rawlog", "check the path");
-  mrpt::obs::CRawlog rawlog;
-  bool loaded = false;
-  try {
-    loaded = rawlog.loadFromRawLogFile(path);
-  } catch (const std::exception& e) {
-    throw InputError(path, 0, std::string("MRPT cannot read it: ") + e.what(), kFix);
-  }
-  if (!loaded || rawlog.empty()) throw InputError(path, 0, "not an MRPT rawlog (or an empty one)", kFix);
+LaserLog ParseRawlog(const std::string& bytes, const std::string& path) {
+  // Objects are read one at a time from memory (what CRawlog::loadFromRawLogFile does from
+  // the file), so only the converted log is kept, not every MRPT object at once.
+  mrpt::io::CMemoryStream memory;
+  memory.assignMemoryNotOwn(bytes.data(), bytes.size());
+  auto archive = mrpt::serialization::archiveFrom(memory);
   Reader r{path, {}, {}, false, {}};
   r.log.format = "MRPT rawlog";
-  for (std::size_t i = 0; i < rawlog.size(); ++i) {
-    switch (rawlog.getType(i)) {
-      case mrpt::obs::CRawlog::etObservation: r.Observation(*rawlog.getAsObservation(i), i); break;
-      case mrpt::obs::CRawlog::etSensoryFrame:
-        for (const auto& o : *rawlog.getAsObservations(i)) r.Observation(*o, i);
-        break;
-      case mrpt::obs::CRawlog::etActionCollection: r.Action(*rawlog.getAsAction(i), i); break;
-      default: break;
+  std::size_t index = 0;
+  for (;; ++index) {
+    const std::uint64_t start = memory.getPosition();
+    if (start >= bytes.size()) break;
+    mrpt::serialization::CSerializable::Ptr object;
+    try {
+      object = archive.ReadObject();
+    } catch (const mrpt::serialization::CExceptionEOF&) {
+      r.Fail("truncated: the file ends inside it (byte " + std::to_string(start) + " of " +
+                 std::to_string(bytes.size()) + ")",
+             index);
+    } catch (const std::exception& e) {
+      r.Fail(std::string("MRPT cannot read it: ") + e.what(), index);
+    }
+    if (auto frame = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(object)) {
+      for (const auto& o : *frame)
+        if (o) r.Observation(*o, index);
+    } else if (auto observation = std::dynamic_pointer_cast<mrpt::obs::CObservation>(object)) {
+      r.Observation(*observation, index);
+    } else if (auto action = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(object)) {
+      r.Action(*action, index);
     }
     if (r.log.scans.size() + r.log.odometry.size() + r.log.landmarks.size() > 100'000'000)
       throw InputError(path, 0, "more than 1e8 messages", "split the rawlog");
   }
+  if (index == 0) throw InputError(path, 0, "not an MRPT rawlog (or an empty one)", kFix);
   return std::move(r.log);
 }
+
+LaserLog ReadRawlog(const std::string& path, std::uint64_t max_bytes) {
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open the rawlog", "check the path");
+  return ParseRawlog(ReadRawlogBytes(path, max_bytes), path);
+}
+
+LaserLog ReadRawlog(const std::string& path) { return ReadRawlog(path, limits::kMaxDecompressedBytes); }
 
 void WriteRawlog(const Stream& stream, const std::string& path) {
   const double origin_s = stream.header.time_origin_s.value_or(0.0);

@@ -19,6 +19,7 @@
 // beam is at its stream angle); landmarks -> CObservationBearingRange (label LANDMARKS).
 // Timestamps: time_origin_s (0 for a simulated stream) + t_s, in MRPT's 100 ns ticks.
 // Not carried: ground truth, the world, gyro events, noise models (the header).
+#include <cstdint>
 #include <string>
 
 #include "core/laser_log.hpp"
@@ -26,8 +27,13 @@
 
 namespace slambox::mrpt_bridge {
 
-/// Throws InputError naming the file: unreadable, not a rawlog, a limit exceeded, a scan
-/// whose sensor moves on the robot.
+/// Throws InputError naming the file: unreadable, not a rawlog, truncated or corrupt (the
+/// object's index), a limit exceeded, a scan whose sensor moves on the robot. The file may be
+/// gzip-compressed; more than `max_bytes` of (decompressed) content is refused while reading.
+LaserLog ReadRawlog(const std::string& path, std::uint64_t max_bytes);
+/// ReadRawlog's parsing of the (decompressed) content; `path` names it in errors.
+LaserLog ParseRawlog(const std::string& bytes, const std::string& path);
+/// ReadRawlog with limits::kMaxDecompressedBytes: the plugin's entry.
 LaserLog ReadRawlog(const std::string& path);
 
 /// Writes `path` atomically (a temporary name beside it, then rename).

@@ -9,6 +9,7 @@
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/slam/CRangeBearingKFSLAM2D.h>
 
+#include <cstring>
 #include <random>
 
 #include "slam/mrpt/mrpt_convert.hpp"
@@ -84,6 +85,20 @@ TEST(MrptConvert, ScanRoundTripKeepsRangesValidityAndAngles) {
     EXPECT_EQ(out.valid[i], in.valid[i]) << i;
     EXPECT_NEAR(out.ranges_m[i], in.ranges_m[i], 2e-6) << i;
   }
+}
+
+TEST(MrptConvert, AScanDirectionByteOtherThanZeroOrOneIsRead) {
+  // MRPT copies the file's byte into the bool rightToLeft unchecked (fuzz_rawlog found 255);
+  // any nonzero byte means right to left, and reading it is no undefined behaviour (UBSan).
+  const LaserScanEvent in = MakeScan(-M_PI / 2, M_PI / 180, 181, 3);
+  mrpt::obs::CObservation2DRangeScan scan = mb::ToMrptScan(in, 0.01);
+  ASSERT_TRUE(scan.rightToLeft);
+  const LaserScanEvent expected = mb::FromMrptScan(scan, in.t_s);
+  const unsigned char byte = 255;
+  std::memcpy(&scan.rightToLeft, &byte, 1);
+  const LaserScanEvent out = mb::FromMrptScan(scan, in.t_s);
+  EXPECT_EQ(out.ranges_m, expected.ranges_m);
+  EXPECT_EQ(out.valid, expected.valid);
 }
 
 TEST(MrptConvert, PoseCompositionMatchesSe2IncludingWrapAtPi) {

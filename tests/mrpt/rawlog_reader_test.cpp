@@ -15,6 +15,10 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <fstream>
+#include <iterator>
+#include <zlib.h>
+
 #include "core/error.hpp"
 #include "slam/mrpt/mrpt_convert.hpp"
 #include "slam/mrpt/mrpt_rawlog.hpp"
@@ -113,6 +117,90 @@ TEST(RawlogReader, RefusesWhatIsNotARawlog) {
     }
   }
   fs::remove(file);
+}
+
+/// A small observations-layout rawlog (MRPT's saveToRawLogFile writes it gzip-compressed).
+fs::path WriteScansRawlog(const std::string& tag, int scans) {
+  const fs::path file = fs::temp_directory_path() / ("slambox_" + tag + "_" + std::to_string(::getpid()) + ".rawlog");
+  mrpt::obs::CRawlog rawlog;
+  for (int k = 0; k < scans; ++k) {
+    auto scan = mrpt::obs::CObservation2DRangeScan::Create();
+    scan->timestamp = mrpt::Clock::fromDouble(10.0 + k);
+    scan->aperture = static_cast<float>(M_PI);
+    scan->maxRange = 30.0f;
+    scan->resizeScan(181);
+    for (int i = 0; i < 181; ++i) {
+      scan->setScanRange(i, 2.0f);
+      scan->setScanRangeValidity(i, true);
+    }
+    rawlog.insert(scan);
+  }
+  EXPECT_TRUE(rawlog.saveToRawLogFile(file.string()));
+  return file;
+}
+
+std::string Gunzip(const fs::path& file) {
+  gzFile f = gzopen(file.c_str(), "rb");
+  std::string out;
+  char buffer[4096];
+  for (int got; (got = gzread(f, buffer, sizeof buffer)) > 0;) out.append(buffer, static_cast<std::size_t>(got));
+  gzclose(f);
+  return out;
+}
+
+void WriteBytes(const fs::path& file, const std::string& bytes) { std::ofstream(file, std::ios::binary) << bytes; }
+
+std::string ErrorOf(const std::string& path, std::uint64_t max_bytes) {
+  try {
+    mrpt_bridge::ReadRawlog(path, max_bytes);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RawlogReader, PlainAndCompressedReadTheSame) {
+  const fs::path gz = WriteScansRawlog("gz", 4);
+  const fs::path plain = gz.string() + ".plain";
+  WriteBytes(plain, Gunzip(gz));
+  const LaserLog a = mrpt_bridge::ReadRawlog(gz.string()), b = mrpt_bridge::ReadRawlog(plain.string());
+  ASSERT_EQ(a.scans.size(), 4u);
+  ASSERT_EQ(b.scans.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(a.scans[k].ts, b.scans[k].ts);
+    EXPECT_EQ(a.scans[k].ranges_m, b.scans[k].ranges_m);
+  }
+  fs::remove(gz);
+  fs::remove(plain);
+}
+
+TEST(RawlogReader, ContentOverTheLimitIsRefusedWhileReading) {
+  const fs::path gz = WriteScansRawlog("limit", 20);
+  const std::uint64_t size = Gunzip(gz).size();
+  const std::string refused = ErrorOf(gz.string(), size - 1);
+  EXPECT_NE(refused.find(gz.string()), std::string::npos) << refused;
+  EXPECT_NE(refused.find("more than " + std::to_string(size - 1) + " bytes"), std::string::npos) << refused;
+  EXPECT_EQ(ErrorOf(gz.string(), size), "");  // exactly at the limit: read whole
+  fs::remove(gz);
+}
+
+TEST(RawlogReader, TruncatedFilesAreRefusedNamingTheObject) {
+  const fs::path gz = WriteScansRawlog("cut", 3);
+  const std::string bytes = Gunzip(gz);
+  const fs::path plain = gz.string() + ".plain";
+  WriteBytes(plain, bytes.substr(0, bytes.size() - 10));  // the third scan loses its end
+  const std::string cut = ErrorOf(plain.string(), 1u << 30);
+  EXPECT_NE(cut.find(plain.string()), std::string::npos) << cut;
+  EXPECT_NE(cut.find("object 2"), std::string::npos) << cut;
+  // A gzip stream cut short is corrupt compressed data, not a shorter log.
+  std::ifstream in(gz, std::ios::binary);
+  const std::string compressed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  WriteBytes(plain, compressed.substr(0, compressed.size() / 2));
+  const std::string corrupt = ErrorOf(plain.string(), 1u << 30);
+  EXPECT_NE(corrupt.find(plain.string()), std::string::npos) << corrupt;
+  EXPECT_FALSE(corrupt.empty());
+  fs::remove(gz);
+  fs::remove(plain);
 }
 
 }  // namespace
