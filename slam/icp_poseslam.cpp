@@ -37,6 +37,7 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("guess_disagreement_deg", c.guess_disagreement_deg, "deg", "... or turned farther apart than this", Above(0));
   b.Bind("guess_fit_radius_m", c.guess_fit_radius_m, "m", "between two ICP results, the one with more scan points this close to the target wins", Above(0));
   b.Bind("guess_switch_margin", c.guess_switch_margin, "-", "the constant-velocity result must fit this much better (fraction of points)", AtLeast(0));
+  b.Bind("unconverged_icp_edges_from_odometry", c.unconverged_icp_edges_from_odometry, "-", "a keyframe whose ICP hit its iteration cap unconverged gets an odometry edge's information (motion model), ICP's pose");
   b.Bind("keyframe_distance_m", c.keyframe_distance_m, "m", "new keyframe after this much translation", Above(0));
   b.Bind("keyframe_angle_deg", c.keyframe_angle_deg, "deg", "new keyframe after this much rotation", Above(0));
   b.Bind("edge_information", c.edge_information, kEdgeInformationNames, "information of ICP edges");
@@ -184,7 +185,8 @@ void IcpPoseSlam::OnLaserScan(const LaserScanEvent& scan) {
   // A keyframe ICP cannot reach any more (sparse or changed surroundings) is replaced all
   // the same, joined by an odometry edge: otherwise every later scan would be registered to
   // an ever more distant keyframe and fail too.
-  if (far) AddKeyframe(scan, std::move(points), ok ? &r : nullptr);
+  const bool measured = ok && (r.converged || !config_.unconverged_icp_edges_from_odometry);
+  if (far) AddKeyframe(scan, std::move(points), measured ? &r : nullptr);
   else RecordPose(scan.t_s);
 }
 
@@ -196,7 +198,7 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
     e.from = k - 1;
     e.to = k;
     e.T_from_to = T_kf_robot_;
-    if (!edge_icp) {  // ICP failed: the wheel odometry since the keyframe, floored so it stays invertible
+    if (!edge_icp) {  // ICP failed or did not converge: the wheel odometry's information, floored so it stays invertible
       e.information = (odometry_cov_ + Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal().toDenseMatrix()).inverse();
       estimate_.diagnostics["odometry_edges"].emplace_back(scan.t_s, 1.0);
     } else {
