@@ -64,7 +64,8 @@ struct StampedPose {
 };
 
 struct StreamHeader {
-  static constexpr int kFormatVersion = 1;
+  /// 2: CRC-32 checksum (1, FNV-1a 64, is still read). core/stream_io.hpp has the layout.
+  static constexpr int kFormatVersion = 2;
   int format_version = kFormatVersion;
   std::string slambox_version;
   std::string scenario_name;

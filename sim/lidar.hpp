@@ -29,6 +29,10 @@ class LidarSensor {
   LidarConfig config_;
   ScanAngles angles_;
   std::vector<Eigen::Vector2d> beam_dirs_;  ///< unit beam directions in the robot frame
+  // Per scan, reused: the beams' world directions and their static ranges (CastFan).
+  std::vector<Eigen::Vector2d> world_dirs_;
+  std::vector<double> static_ranges_;
+  FanScratch fan_scratch_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
   std::uniform_real_distribution<double> uniform_{0.0, 1.0};

@@ -83,10 +83,15 @@ double RayStaticRangeBruteForce(const Eigen::Vector2d& o, const Eigen::Vector2d&
   return best;
 }
 
-double CastRay(const RayScene& scene, const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m) {
-  const double statics = scene.statics ? scene.statics->Cast(o, d, max_range_m) : kNoHit;
+double CastRayPastStatics(const RayScene& scene, const Eigen::Vector2d& o, const Eigen::Vector2d& d,
+                          double max_range_m, double statics) {
   if (scene.movers.empty()) return statics;
   return std::min(statics, RayMoversRange(o, d, std::min(max_range_m, statics), scene.movers));
+}
+
+double CastRay(const RayScene& scene, const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_range_m) {
+  const double statics = scene.statics ? scene.statics->Cast(o, d, max_range_m) : kNoHit;
+  return CastRayPastStatics(scene, o, d, max_range_m, statics);
 }
 
 }  // namespace slambox

@@ -10,6 +10,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <zlib.h>
 
 #include "core/error.hpp"
 #include "tests/support/synthetic_stream.hpp"
@@ -85,6 +87,57 @@ TEST(StreamIo, FileRoundTripIsBitIdentical) {
   EXPECT_EQ(std::get<GyroEvent>(r.events.back()).yaw_rate_rps, -0.0123456789);
 }
 
+std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::uint64_t LittleEndianU64(const std::string& bytes, size_t at) {
+  std::uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[at + i])) << (8 * i);
+  return v;
+}
+
+TEST(StreamIo, AFileWrittenInChunksIsTheSerializationAndItsChecksumIsCrc32) {
+  Stream s = SmallStream();
+  LaserScanEvent big;  // one scan over the writer's 1 MiB chunk, and many small records
+  big.t_s = s.header.duration_s;
+  big.range_max_m = 10.0;
+  for (int i = 0; i < 200000; ++i) {
+    big.ranges_m.push_back(0.5 + 1e-5 * i);
+    big.valid.push_back(static_cast<std::uint8_t>(i % 3 != 0));
+  }
+  s.events.push_back(big);
+  for (int k = 0; k < 40000; ++k) s.groundtruth.push_back({s.header.duration_s + 1e-3 * k, SE2(k, -k, 0.1)});
+  const std::string path = TempPath("chunks.stream");
+  WriteStream(s, path);
+  const std::string bytes = ReadBytes(path), expected = SerializeStream(s);
+  ASSERT_GT(bytes.size(), std::size_t{2} << 20);
+  EXPECT_TRUE(bytes == expected);
+  // The trailer's checksum is zlib's CRC-32 of every byte before it.
+  const std::uint64_t crc = crc32_z(0, reinterpret_cast<const Bytef*>(bytes.data()), bytes.size() - 8);
+  EXPECT_EQ(LittleEndianU64(bytes, bytes.size() - 8), crc);
+  EXPECT_EQ(SerializeStream(ReadStream(path)), expected);
+}
+
+TEST(StreamIo, VersionOneFilesAreStillRead) {
+  // Version 1 = the same layout with an FNV-1a 64 checksum: made here from a version 2 file.
+  const Stream s = SmallStream();
+  std::string bytes = SerializeStream(s);
+  bytes[8] = 1;
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i + 8 < bytes.size(); ++i) h = (h ^ static_cast<unsigned char>(bytes[i])) * 0x100000001b3ull;
+  for (int i = 0; i < 8; ++i) bytes[bytes.size() - 8 + i] = static_cast<char>(h >> (8 * i));
+  const std::string path = TempPath("version1.stream");
+  WriteBytes(path, bytes);
+  const Stream r = ReadStream(path);
+  EXPECT_EQ(r.header.format_version, 1);
+  EXPECT_EQ(SerializeStream(r), SerializeStream(s));  // written back as version 2
+  bytes[bytes.size() - 1] ^= 1;  // and a version 1 checksum is checked
+  WriteBytes(path, bytes);
+  EXPECT_NE(ErrorOf(path).find("checksum mismatch"), std::string::npos);
+}
+
 TEST(StreamIo, TimeOriginIsWrittenOnlyWhenKnownAndReadBack) {
   Stream s = SmallStream();
   const std::string plain = SerializeStream(s);
@@ -131,7 +184,7 @@ TEST(StreamIo, WrongVersionAndWrongMagicAreClearErrors) {
   WriteBytes(path, bytes);
   const std::string err = ErrorOf(path);
   EXPECT_NE(err.find("format version 7"), std::string::npos) << err;
-  EXPECT_NE(err.find("reads version 1"), std::string::npos) << err;
+  EXPECT_NE(err.find("reads versions 1 to 2"), std::string::npos) << err;
   WriteBytes(path, "version: 1\nname: loop\n");
   EXPECT_FALSE(IsStreamFile(path));
   EXPECT_NE(ErrorOf(path).find("not a slambox stream"), std::string::npos);

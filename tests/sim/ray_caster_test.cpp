@@ -147,5 +147,43 @@ TEST(RayCaster, GridIndexEqualsBruteForceAndBox2D) {
               "largest range difference otherwise %.2e m\n", box2d_mismatches, n, max_box2d_difference_m);
 }
 
+TEST(RayCaster, FanEqualsOneCastPerBeamBitForBit) {
+  std::mt19937_64 rng(11);
+  const Scenario s = RandomWorld(rng);
+  const World world = MakeWorld(s);
+  const StaticGeometry geometry = StaticGeometryOf(world);
+  const StaticGeometryIndex index(geometry);
+  std::uniform_real_distribution<double> u(-30, 30), ang(-M_PI, M_PI), range(0.5, 40);
+  FanScratch scratch;
+  std::vector<double> ranges;
+  int fans = 0, hits = 0;
+  // Full circles (the first beam at -pi, so the fan wraps through +-pi), narrow and wide fans,
+  // origins outside the grid, and origins exactly on a wall segment and on a circle's rim.
+  const Segment& wall = geometry.segments.at(3);
+  const Circle& post = geometry.circles.at(2);
+  for (int f = 0; f < 600; ++f) {
+    Eigen::Vector2d o(u(rng), u(rng));
+    if (f % 50 == 1) o = wall.a + 0.37 * (wall.b - wall.a);
+    if (f % 50 == 2) o = wall.b;
+    if (f % 50 == 3) o = post.center + post.radius_m * Eigen::Vector2d(0.6, 0.8);
+    if (f % 50 == 4) o = {70.0, -3.0};
+    const int beams = f % 3 == 0 ? 360 : f % 3 == 1 ? 181 : 37;
+    const double fov = f % 3 == 0 ? 2 * M_PI : f % 3 == 1 ? M_PI : 0.3;
+    const double first = f % 3 == 0 ? -M_PI : -fov / 2, inc = f % 3 == 0 ? fov / beams : fov / (beams - 1);
+    const double theta = ang(rng), max_range = range(rng);
+    const Eigen::Matrix2d R = SE2(0, 0, theta).rotation();
+    std::vector<Eigen::Vector2d> dirs;
+    for (int i = 0; i < beams; ++i) dirs.push_back(R * Dir(first + i * inc));
+    index.CastFan(o, theta + first, inc, dirs, max_range, scratch, ranges);
+    ASSERT_EQ(ranges.size(), dirs.size());
+    for (int i = 0; i < beams; ++i) {
+      ASSERT_EQ(ranges[i], index.Cast(o, dirs[i], max_range)) << "fan " << f << " beam " << i;
+      hits += ranges[i] != kNoHit;
+    }
+    ++fans;
+  }
+  EXPECT_GT(hits, fans * 40);
+}
+
 }  // namespace
 }  // namespace slambox
