@@ -36,7 +36,7 @@ std::array<double, 4> Alpha(const std::vector<double>& given, std::array<double,
 
 void ConvertVictoriaPark(const ConvertRequest& r) {
   VictoriaParkImportOptions o = r.victoria;
-  o.odometry_alpha = Alpha(r.alpha, o.odometry_alpha);
+  if (!r.alpha.empty()) o.odometry_alpha = Alpha(r.alpha, {});
   const Stream s = ReadVictoriaPark(r.input, o);
   WriteStream(s, r.output);
   long poses = 0, observations = 0;
@@ -50,7 +50,10 @@ void ConvertVictoriaPark(const ConvertRequest& r) {
   line.precision(3);
   line << "converted " << r.input << ": " << poses << " odometry steps, " << observations
        << " observations (known ids; median sigma_range " << lm.sigma_range_m << " m, sigma_bearing "
-       << lm.sigma_bearing_deg << " deg, range max " << lm.range_max_m << " m) -> " << r.output;
+       << lm.sigma_bearing_deg << " deg, range max " << lm.range_max_m << " m; odometry alpha";
+  line.precision(6);
+  for (double a : s.header.sensors.odometry->alpha) line << " " << a;
+  line << (r.alpha.empty() ? " fitted to the file's covariances" : "") << ") -> " << r.output;
   std::cerr << line.str() << "\n";
 }
 
@@ -121,7 +124,8 @@ void AddConvertCommand(CLI::App& app) {
   vp->add_option("data", r->input, "VicPark_clean_data.txt (optionally .gz/.bz2)")->required();
   vp->add_option("-o,--output", r->output, "stream file to write")->required();
   vp->add_option("--pose-period-s", r->victoria.pose_period_s, "time between poses; the file has none (default 0.2)");
-  vp->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (Thrun's model; default 0.05,0.005,0.05,0.005)")
+  vp->add_option("--odometry-alpha", r->alpha,
+                 "odometry noise a1,a2,a3,a4 (Thrun's model; default: fitted to the file's odometry covariances)")
       ->delimiter(',');
   vp->callback([r] { ConvertVictoriaPark(*r); });
 }

@@ -34,6 +34,9 @@ void AddRunCommand(CLI::App& app) {
   auto inline_modules = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--exec", *inline_modules,
                   "declare an exec module NAME[:NEED,...]=COMMAND, run as --algo exec:NAME (docs/exec_protocol.md)");
+  cmd->add_flag("--hide-landmark-ids", request->hide_landmark_ids,
+                "strip the landmark detector's ids before the modules see the stream (they associate by themselves); "
+                "association_agreement scores them against the hidden ids");
   cmd->add_flag("--skip-unavailable", request->skip_unavailable,
                 "skip listed modules whose sensors the stream lacks (instead of an error)");
   cmd->callback([request, formats, inline_modules] {

@@ -80,8 +80,8 @@ void WriteKittiPair(const fs::path& dir, const std::string& name, const std::vec
 
 Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream, const EvalOptions& options,
                           const std::string& dir, const std::vector<TrajectoryFormat>& formats,
-                          std::optional<Estimate>* kept) {
-  ModuleRun run = ReplayAndScore(module, stream, options);
+                          std::optional<Estimate>* kept, const std::vector<std::vector<int>>* true_observation_ids) {
+  ModuleRun run = ReplayAndScore(module, stream, options, true_observation_ids);
   if (!run.estimate) return run.metrics;
   const fs::path d(dir);
   try {
@@ -103,7 +103,9 @@ Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Str
 json RunAndWrite(const RunRequest& request) {
   for (const auto& p : request.plugins) LoadPlugin(p);
   const Overrides overrides = SplitOverrides(request.sets);
-  const Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
+  Stream stream = LoadOrSimulate(request.input, request.seed, request.seed_given, overrides.scenario);
+  std::optional<std::vector<std::vector<int>>> hidden_ids;
+  if (request.hide_landmark_ids) hidden_ids = HideLandmarkIds(stream);
   const std::vector<std::string> names = ResolveAlgorithms(request.algorithms, stream.header.sensors,
                                                            request.skip_unavailable, HasMap(stream.header.world));
   // Build every module first: a bad --set fails before any file is written.
@@ -122,6 +124,7 @@ json RunAndWrite(const RunRequest& request) {
   // A converted log's clock at t = 0 (for `eval --relations ... --time-origin-s`), and the relations used.
   if (stream.header.time_origin_s) doc["time_origin_s"] = *stream.header.time_origin_s;
   if (!request.relations_path.empty()) doc["relations_file"] = request.relations_path;
+  if (request.hide_landmark_ids) doc["landmark_ids_hidden"] = true;
   doc["algorithms"] = json::object();
   // What the registry says of each module (ModuleInfo), e.g. which are baselines: the
   // figures style those by this flag, never by a name.
@@ -150,7 +153,8 @@ json RunAndWrite(const RunRequest& request) {
     if (progress) std::cerr << "slambox: running " << name << " ..." << std::flush;
     std::optional<Estimate> estimate;
     const Metrics metrics = RunModuleAndWrite(*modules[i], name, stream, options, dir.string(), request.formats,
-                                              request.pictures ? &estimate : nullptr);
+                                              request.pictures ? &estimate : nullptr,
+                                              hidden_ids ? &*hidden_ids : nullptr);
     modules[i].reset();
     doc["algorithms"][name] = ToJson(metrics);
     if (request.pictures) {

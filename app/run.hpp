@@ -46,6 +46,9 @@ struct RunRequest {
   /// Kümmerle relations file (the log's clock, mapped by the stream's time origin): when
   /// given, relation_* score every module on it.
   std::string relations_path;
+  /// Strip the landmark ids before the modules see the stream (HideLandmarkIds); they
+  /// stay the truth of association_agreement.
+  bool hide_landmark_ids = false;
 };
 
 /// Replays `stream` to `module`, scores it and writes DIR/NAME.tum, DIR/estimates/NAME.json
@@ -55,7 +58,8 @@ struct RunRequest {
 Metrics RunModuleAndWrite(SlamModule& module, const std::string& name, const Stream& stream,
                           const EvalOptions& options, const std::string& dir,
                           const std::vector<TrajectoryFormat>& formats = {TrajectoryFormat::kTum},
-                          std::optional<Estimate>* kept = nullptr);
+                          std::optional<Estimate>* kept = nullptr,
+                          const std::vector<std::vector<int>>* true_observation_ids = nullptr);
 
 /// Runs and writes the run folder; returns the metrics.json document.
 nlohmann::json RunAndWrite(const RunRequest& request);

@@ -86,11 +86,23 @@ EvalOptions RunEvalOptions(const Stream& stream, const std::string& relations_pa
   return options;
 }
 
-ModuleRun ReplayAndScore(SlamModule& module, const Stream& stream, const EvalOptions& options) {
+std::vector<std::vector<int>> HideLandmarkIds(Stream& stream) {
+  std::vector<std::vector<int>> ids = ObservationIds(stream);
+  for (SensorEvent& e : stream.events)
+    if (auto* l = std::get_if<LandmarkEvent>(&e))
+      for (LandmarkObservation& o : l->observations) o.id = -1;
+  if (stream.header.sensors.landmarks) stream.header.sensors.landmarks->known_ids = false;
+  return ids;
+}
+
+ModuleRun ReplayAndScore(SlamModule& module, const Stream& stream, const EvalOptions& options,
+                         const std::vector<std::vector<int>>* true_observation_ids) {
   ModuleRun run;
   try {
     Estimate estimate = Replay(module, stream);
-    Evaluation evaluation = EvaluateEstimate(GroundTruth{stream.groundtruth, stream.header.world}, estimate, options);
+    const GroundTruth truth{stream.groundtruth, stream.header.world,
+                            true_observation_ids ? *true_observation_ids : ObservationIds(stream)};
+    Evaluation evaluation = EvaluateEstimate(truth, estimate, options);
     run.metrics = std::move(evaluation.metrics);
     run.series = std::move(evaluation.series);
     run.estimate = std::move(estimate);

@@ -52,6 +52,14 @@ struct ModuleRun {
 
 /// Replays `stream` to `module` and scores it. A module that throws gives status failed
 /// with what() as the reason and no estimate; it never takes others down.
-ModuleRun ReplayAndScore(SlamModule& module, const Stream& stream, const EvalOptions& options);
+/// Association is scored against `true_observation_ids` (ObservationIds' layout), or the
+/// stream's own ids when null.
+ModuleRun ReplayAndScore(SlamModule& module, const Stream& stream, const EvalOptions& options,
+                         const std::vector<std::vector<int>>* true_observation_ids = nullptr);
+
+/// `run --hide-landmark-ids`: every observation's id becomes -1 and the detector reports
+/// unknown ids, so modules associate by themselves (a real log's ids, e.g. Victoria
+/// Park's, stay as the truth association_agreement scores against). Returns the ids hidden.
+std::vector<std::vector<int>> HideLandmarkIds(Stream& stream);
 
 }  // namespace slambox

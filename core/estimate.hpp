@@ -55,6 +55,19 @@ struct ParticleSnapshot {
   std::vector<double> weights;  ///< normalized
 };
 
+/// What a module that associates its own detections did with one of them (scored by
+/// `association_agreement`, eval/association_agreement.hpp). Modules that do not report
+/// assignments leave Estimate::observation_assignments empty.
+struct ObservationAssignment {
+  int scan = 0;          ///< index of the LandmarkEvent among the stream's landmark events (0-based)
+  int index = 0;         ///< the observation's index in that event
+  /// The module's landmark id it updated or created (LandmarkEstimate::id; after merges the
+  /// surviving landmark's), possibly of a landmark removed later; -1: not used (clutter,
+  /// ambiguous, held).
+  int landmark = -1;
+  bool created = false;  ///< the observation created that landmark
+};
+
 /// Occupancy grid: cell (ix, iy) covers origin + [ix, ix+1) x [iy, iy+1) * resolution.
 struct OccupancyGrid {
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
@@ -72,6 +85,9 @@ struct Estimate {
   std::vector<LoopClosureRecord> loop_closures;
   PoseGraphView pose_graph;
   std::vector<ParticleSnapshot> particles;
+  /// Per detection, what the module assigned it to (one entry per observation of every
+  /// landmark event, in stream order); empty when the module does not report it.
+  std::vector<ObservationAssignment> observation_assignments;
   /// Named per-step series: name -> (t_s, value). E.g. "icp_iterations", "neff",
   /// "distinct_ancestors", "hessian_min_eigenvalue", "degenerate".
   std::map<std::string, std::vector<std::pair<double, double>>> diagnostics;

@@ -217,11 +217,25 @@ void ExecAnswerParser::ParseLine(std::string_view line, long line_number, double
     const double t_s = Number(j, "t_s", c);
     if (!std::isfinite(t_s)) c.Fail("'t_s' must be finite");
     estimate_.diagnostics[name.text].emplace_back(t_s, Number(j, "value", c));
+  } else if (type == "assignment") {  // optional (added with association_agreement): older children never send it
+    CheckKeys(j, {"type", "scan", "index", "landmark"}, {"created"}, c);
+    const auto integer = [&](const char* key, double min) {
+      const FlatValue& v = *j.Find(key);
+      if (v.kind != FlatValue::Kind::kNumber || !v.integer || v.number < min || v.number > 2147483647.0)
+        c.Fail(std::string("'") + key + "' must be an integer >= " + std::to_string(static_cast<int>(min)));
+      return static_cast<int>(v.number);
+    };
+    ObservationAssignment a{integer("scan", 0), integer("index", 0), integer("landmark", -1), false};
+    if (const FlatValue* created = j.Find("created")) {
+      if (created->kind != FlatValue::Kind::kBool) c.Fail("'created' must be true or false");
+      a.created = created->boolean;
+    }
+    estimate_.observation_assignments.push_back(a);
   } else if (type == "done") {
     CheckKeys(j, {"type"}, {}, c);
     done_ = true;
   } else {
-    c.Fail("unknown type '" + type + "' (expected pose, landmark, diagnostic or done)");
+    c.Fail("unknown type '" + type + "' (expected pose, landmark, diagnostic, assignment or done)");
   }
 }
 

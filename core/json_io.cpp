@@ -140,6 +140,12 @@ json ToJson(const Estimate& e) {
     diag[name] = s;
   }
   j["diagnostics"] = diag;
+  // [scan, index, landmark, created]; left out when the module reports none (older files lack it).
+  if (!e.observation_assignments.empty()) {
+    json as = json::array();
+    for (const auto& a : e.observation_assignments) as.push_back({a.scan, a.index, a.landmark, a.created ? 1 : 0});
+    j["observation_assignments"] = as;
+  }
   return j;
 }
 
@@ -189,6 +195,10 @@ Estimate EstimateFromJson(const json& j) {
   }
   for (const auto& [name, series] : j.at("diagnostics").items())
     for (const auto& tv : series) e.diagnostics[name].push_back({tv.at(0).get<double>(), NumOr(tv.at(1))});
+  if (j.contains("observation_assignments"))
+    for (const auto& a : j.at("observation_assignments"))
+      e.observation_assignments.push_back(
+          {a.at(0).get<int>(), a.at(1).get<int>(), a.at(2).get<int>(), a.at(3).get<int>() != 0});
   return e;
 }
 

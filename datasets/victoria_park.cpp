@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/limits.hpp"
 #include "datasets/compressed_file.hpp"
+#include "datasets/odometry_noise_fit.hpp"
 
 namespace slambox {
 
@@ -30,6 +31,8 @@ Stream ParseVictoriaPark(const std::string& text, const std::string& name, const
     throw InputError(name, 0, "invalid import options (pose_period_s > 0, 0 < fov_deg <= 360)",
                      "check --pose-period-s / --fov-deg");
   std::map<int, SE2> odometry;                                // end pose -> increment
+  std::vector<SE2> increments;
+  std::vector<Eigen::Matrix3d> increment_covariances;
   std::map<int, std::vector<LandmarkObservation>> observed;  // pose -> observations
   std::vector<double> sigma_range, sigma_bearing;
   double range_max = 0.0;
@@ -63,6 +66,10 @@ Stream ParseVictoriaPark(const std::string& text, const std::string& name, const
       const int i = index(v[1], "the start pose index"), j = index(v[2], "the end pose index");
       if (j != i + 1) fail("odometry must join consecutive poses (i, i + 1), got " + std::to_string(i) + " -> " + std::to_string(j));
       if (!odometry.emplace(j, SE2(v[3], v[4], v[5])).second) fail("a second odometry row ends at pose " + std::to_string(j));
+      increments.push_back(SE2(v[3], v[4], v[5]));
+      Eigen::Matrix3d P;
+      P << v[6], v[7], v[8], v[7], v[9], v[10], v[8], v[10], v[11];
+      increment_covariances.push_back(P);
     } else if (v[0] == 0) {
       const int k = index(v[1], "the pose index"), f = index(v[2], "the feature index");
       const double x = v[3], y = v[4], r = std::hypot(x, y);
@@ -101,7 +108,7 @@ Stream ParseVictoriaPark(const std::string& text, const std::string& name, const
   s.header.duration_s = last * o.pose_period_s;
   OdometryConfig odo;
   odo.rate_hz = 1.0 / o.pose_period_s;
-  odo.alpha = o.odometry_alpha;
+  odo.alpha = o.odometry_alpha ? *o.odometry_alpha : FitOdometryAlpha(increments, increment_covariances).alpha;
   LandmarkSensorConfig lm;
   lm.rate_hz = 1.0 / o.pose_period_s;
   lm.range_max_m = std::ceil(range_max);

@@ -5,6 +5,7 @@
 
 #include "eval/alignment.hpp"
 #include "eval/association.hpp"
+#include "eval/association_agreement.hpp"
 #include "eval/ate.hpp"
 #include "core/chi_square.hpp"
 #include "eval/consistency.hpp"
@@ -111,6 +112,15 @@ void AddLandmarks(const GroundTruth& gt, const Estimate& est, const EvalOptions&
                                 match.error_m, match.nees});
 }
 
+void AddAssociation(const GroundTruth& gt, const Estimate& est, Metrics& m) {
+  const AssociationAgreement r = ScoreAssociation(gt.observation_ids, est.observation_assignments);
+  if (!r.agreement) return;  // no true id, or a module that does not report assignments: null
+  m.association_agreement = *r.agreement;
+  m.association_duplicates = r.duplicates;
+  m.association_misses = r.misses;
+  m.association_unused = r.unused;
+}
+
 void AddMaps(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, Metrics& m) {
   if (gt.trajectory.empty()) return;  // no ground truth: the stream's world is empty, not the truth
   if (!est.grid || est.grid->width <= 0 || est.grid->height <= 0 || !(est.grid->resolution_m > 0.0)) return;
@@ -148,6 +158,16 @@ void AddCost(const GroundTruth& gt, const Estimate& est, Metrics& m) {
 }
 }  // namespace
 
+std::vector<std::vector<int>> ObservationIds(const Stream& stream) {
+  std::vector<std::vector<int>> ids;
+  for (const SensorEvent& e : stream.events)
+    if (const auto* l = std::get_if<LandmarkEvent>(&e)) {
+      std::vector<int>& scan = ids.emplace_back();
+      for (const LandmarkObservation& o : l->observations) scan.push_back(o.id);
+    }
+  return ids;
+}
+
 double PathLength(const std::vector<StampedPose>& trajectory) {
   double length = 0.0;
   for (size_t i = 1; i < trajectory.size(); ++i)
@@ -180,6 +200,7 @@ Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const Ev
   AddFileRelations(est_poses, o, m);
   AddConsistency(a, est, o, m, series);
   AddLandmarks(gt, est, o, umeyama, m, series);
+  AddAssociation(gt, est, m);
   AddMaps(gt, est, o, m);
   AddLoopClosures(gt, est, o, m);
   AddCost(gt, est, m);

@@ -23,7 +23,14 @@ namespace slambox {
 struct GroundTruth {
   std::vector<StampedPose> trajectory;  ///< time-ordered
   World world;
+  /// The true id of each observation of each landmark event (-1: none, e.g. clutter or a
+  /// detector without ids); empty: association is not scored.
+  std::vector<std::vector<int>> observation_ids;
 };
+
+/// Per landmark event of the stream, the ids its observations carry (ObservationIds of a
+/// stream whose detector knows ids is the truth association_agreement scores against).
+std::vector<std::vector<int>> ObservationIds(const Stream& stream);
 
 enum class AlignMode { kNone, kSE2, kOrigin };
 

@@ -114,6 +114,10 @@ std::vector<MetricDescriptor> BuildTable() {
   t.Add("landmark_missed", "missed landmarks", "", lower, Of<&Metrics::landmark_missed>);
   t.Add("landmark_matched", "matched landmarks", "", higher, Of<&Metrics::landmark_matched>);
   t.Add("landmark_matching", "landmark matching", "", neither, Of<&Metrics::landmark_matching>);
+  t.Add("association_agreement", "association agreement", "", higher, Of<&Metrics::association_agreement>);
+  t.Add("association_duplicates", "association duplicates", "", lower, Of<&Metrics::association_duplicates>);
+  t.Add("association_misses", "association misses", "", lower, Of<&Metrics::association_misses>);
+  t.Add("association_unused", "association unused observations", "", lower, Of<&Metrics::association_unused>);
   t.Add("grid_cell_error", "grid cell error", "", lower, Of<&Metrics::grid_cell_error>);
   t.Add("grid_known_cells", "grid known cells", "", neither, Of<&Metrics::grid_known_cells>);
   t.Add("grid_mean_nearest_occupied_m", "grid estimate→truth [m]", "m", lower,

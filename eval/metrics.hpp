@@ -60,6 +60,10 @@ struct Metrics {
   std::optional<std::int64_t> landmark_spurious, landmark_missed, landmark_matched;
   std::optional<std::string> landmark_matching;  ///< "id" or "optimal"; null without a map
 
+  /// eval/association_agreement.hpp; null without true ids or without the module's assignments.
+  double association_agreement = NAN;
+  std::optional<std::int64_t> association_duplicates, association_misses, association_unused;
+
   double grid_cell_error = NAN;
   std::optional<std::int64_t> grid_known_cells;
   double grid_mean_nearest_occupied_m = NAN, grid_mean_truth_to_estimate_m = NAN;

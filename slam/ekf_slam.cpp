@@ -40,6 +40,12 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("hold_uncertain_pairings", c.hold_uncertain_pairings, "-",
          "unknown ids: hold a pairing whose gate (given the scan's other pairings) expects more clutter than the gate's "
          "miss probability, until consecutive scans repeat it enough");
+  b.Bind("estimate_detection_rate", c.estimate_detection_rate, "-",
+         "unknown ids: a miss in view costs the detection probability at its range (estimated from the confirmed "
+         "landmarks, the sensor's detection_prob as prior) times the landmark's detections over those predicted for "
+         "it (at most 1), not 1");
+  b.Bind("detection_rate_bands", c.detection_rate_bands, "bands", "range bands of the detection probability estimate",
+         AtLeast(1));
   b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance", Above(0));
   b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
@@ -65,6 +71,7 @@ void EkfSlam::Start(const StreamHeader& header) {
   clutter_density_per_m2_ = sensor.clutter_per_scan / (range_max_m_ * range_max_m_ * half_fov_rad_);
   known_ids_ = config_.association == EkfAssociation::kKnown ||
                (config_.association == EkfAssociation::kAuto && sensor.known_ids);
+  detection_ = MakeDetectionRate(range_max_m_, config_.detection_rate_bands, sensor.detection_prob);
   state_ = MakeInitialState(header.start_pose);
   tracks_.clear();
   key_of_id_.clear();
@@ -72,6 +79,7 @@ void EkfSlam::Start(const StreamHeader& header) {
   co_observed_.clear();
   held_log_clutter_.clear();
   next_key_ = 0;
+  scan_ = 0;
   prior_position_ = header.start_pose.translation();
   estimate_ = Estimate{};
   estimate_.trajectory.push_back({0.0, header.start_pose, Eigen::Matrix3d::Zero(), true});
@@ -180,6 +188,11 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
     Record(event.t_s, "nis", update.nis);
     Record(event.t_s, "nis_dof", update.dof);
   }
+  // By key for now; Finish names them by the final landmark ids.
+  for (size_t i = 0; i < obs.size(); ++i)
+    estimate_.observation_assignments.push_back(
+        {scan_, static_cast<int>(i), keys[i], target[i] == Association::kNew});
+  ++scan_;
   return keys;
 }
 
@@ -222,18 +235,35 @@ void EkfSlam::ManageExistence(const std::vector<bool>& matched, double t_s) {
   const SE2 pose = state_.Pose();
   for (int j = static_cast<int>(matched.size()) - 1; j >= 0; --j) {
     LandmarkTrack& t = tracks_[j];
+    const bool was_confirmed = t.confirmed;
     if (matched[j]) t.confirmed = t.confirmed || t.sightings >= config_.confirm_sightings;
     if (!t.confirmed && t_s - t.created_t_s > config_.tentative_max_age_s) {
       RemoveLandmark(state_, j);
       tracks_.erase(tracks_.begin() + j);
       continue;
     }
-    if (matched[j]) continue;
     const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
     const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
     if (!in_view) continue;
-    ++t.misses;
-    --t.existence;
+    // A miss is evidence against existence in proportion to how likely a detection was,
+    // from the scans before this one: P_D at this range over all confirmed landmarks,
+    // for a confirmed landmark times its own visibility, its detections over the
+    // detections P_D predicted for it (Laplace's rule, prior 1; a tentative one has too
+    // short a history). With P_D = 1 one miss cancels one sighting; a tree the detector
+    // sees less often than others at its range (occluded, thin) keeps a positive drift,
+    // and a confirmed landmark never seen again pays a harmonic sum.
+    const double band = DetectionProbability(detection_, zp.x());
+    const double visibility = t.confirmed ? (t.detected_scans + 1.0) / (t.expected_detections + 1.0) : 1.0;
+    const double cost = config_.estimate_detection_rate ? std::min(1.0, band * visibility) : 1.0;
+    // Confirmed landmarks (before this scan: its own sighting may have confirmed it) measure P_D.
+    if (was_confirmed) CountExpected(detection_, zp.x(), matched[j]);
+    t.expected_detections += band;
+    if (matched[j]) {
+      t.detected_scans += 1.0;
+      continue;
+    }
+    t.misses += cost;
+    t.existence -= cost;
     const bool remove = t.confirmed ? t.existence <= 0 : t.misses >= config_.tentative_max_misses;
     if (remove) {
       RemoveLandmark(state_, j);
@@ -264,6 +294,8 @@ int EkfSlam::MergeDuplicates() {
         const LandmarkTrack& gone = tracks_[b];
         keep.sightings += gone.sightings;
         keep.existence += gone.existence;
+        keep.expected_detections += gone.expected_detections;
+        keep.detected_scans += gone.detected_scans;
         keep.confirmed = keep.confirmed || gone.confirmed || keep.sightings >= config_.confirm_sightings;
         merged_into_[gone.key] = keep.key;
         // What was seen together with the removed landmark was seen together with the kept one.
@@ -287,6 +319,13 @@ int EkfSlam::ResolveKey(int key) const {
 void EkfSlam::OnLandmarks(const LandmarkEvent& event) { ProcessLandmarks(event); }
 
 Estimate EkfSlam::Finish() {
+  std::map<int, int> id_of_key;  // known association: the landmark's true id names it
+  for (const auto& [id, key] : key_of_id_) id_of_key[key] = id;
+  for (ObservationAssignment& a : estimate_.observation_assignments) {
+    if (a.landmark < 0) continue;
+    a.landmark = ResolveKey(a.landmark);
+    if (known_ids_) a.landmark = id_of_key.at(a.landmark);
+  }
   for (size_t j = 0; j < tracks_.size(); ++j) {
     if (!tracks_[j].confirmed) continue;
     const int index = static_cast<int>(j);

@@ -6,8 +6,9 @@
 // unknown ids a new landmark is tentative until seen `confirm_sightings` times and is
 // removed if it is missed `tentative_max_misses` times first or not confirmed within
 // `tentative_max_age_s` (so clutter does not become map, nor stay in the state out of view
-// where a later real observation could be paired with it). A confirmed landmark keeps an existence count (+1 seen, -1 missed while
-// predicted inside range and field of view) and is removed at 0. Two landmarks that
+// where a later real observation could be paired with it). A confirmed landmark keeps an existence count (+1 seen, -P_D missed while
+// predicted inside range and field of view, P_D the rate the run measures at that range
+// scaled by the landmark's own visibility) and is removed at 0. Two landmarks that
 // become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
 // ever seen in one scan (then they are two landmarks, however close). A pairing whose gate
 // may hold clutter (the lone re-observation of an old landmark after drift) is held until
@@ -21,6 +22,7 @@
 
 #include "core/slam_module.hpp"
 #include "slam/data_association.hpp"
+#include "slam/detection_rate.hpp"
 #include "slam/ekf_slam_filter.hpp"
 
 namespace slambox {
@@ -43,6 +45,8 @@ struct EkfSlamConfig {
   double visibility_margin_m = 0.5;     ///< [m] a landmark counts as missed only this far inside range_max
   double merge_probability = 0.99;      ///< [-] merge two landmarks whose difference d^2 is below this chi2 quantile (0 = never)
   bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until repeated scans make that unlikelier than a gate miss
+  bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
+  int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
@@ -54,11 +58,13 @@ struct LandmarkTrack {
   int key = 0;           ///< unique for the run, never reused (GraphSLAM's landmark handle)
   int id = -1;           ///< true id with known association, else -1
   int sightings = 0;
-  int misses = 0;
-  int existence = 1;     ///< +1 per sighting, -1 per miss in view; a confirmed landmark is removed at 0
+  double misses = 0;     ///< misses in view, each weighted by its detection rate (EkfSlam::ManageExistence)
+  double existence = 1;  ///< +1 per sighting, -(its detection rate) per miss in view; a confirmed landmark is removed at 0
   bool confirmed = false;
   double created_t_s = 0.0;  ///< when it was created (tentative landmarks expire)
   Eigen::Vector2d first_estimate = Eigen::Vector2d::Zero();  ///< FEJ linearization point
+  double expected_detections = 1;  ///< sum of P_D(range) over the scans it was predicted in view (its first: 1)
+  double detected_scans = 1;       ///< ... of which it was detected in (its first included)
 };
 
 class EkfSlam : public SlamModule {
@@ -95,6 +101,7 @@ class EkfSlam : public SlamModule {
   double half_fov_rad_ = M_PI;
   double clutter_density_per_m2_ = 0.0;  ///< the sensor's clutter_per_scan over its footprint
   bool known_ids_ = true;
+  DetectionRate detection_;  ///< P_D by range, from the confirmed landmarks (unknown ids)
   EkfSlamState state_;
   std::vector<LandmarkTrack> tracks_;
   std::map<int, int> key_of_id_;  ///< true id -> key (known association)
@@ -102,6 +109,7 @@ class EkfSlam : public SlamModule {
   std::set<std::pair<int, int>> co_observed_;  ///< (smaller, larger) keys seen in one scan
   std::map<int, double> held_log_clutter_;  ///< key -> log P[clutter] of its pairing, held in consecutive scans
   int next_key_ = 0;
+  int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction
   Estimate estimate_;
 };

@@ -96,6 +96,7 @@ void FastSlam::Start(const StreamHeader& header) {
   }
   RecordCloud(0.0);
   next_snapshot_s_ = 0.0;
+  scan_ = 0;
 }
 
 void FastSlam::OnOdometry(const OdometryEvent& odometry) {
@@ -123,11 +124,13 @@ void FastSlam::OnOdometry(const OdometryEvent& odometry) {
 void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
   const double t = landmarks.t_s;
   for (FastSlamParticle& p : particles_) {
-    const ParticleUpdateSummary s = UpdateParticle(p, landmarks.observations, update_, rng_);
+    ParticleUpdateSummary s = UpdateParticle(p, landmarks.observations, update_, rng_);
+    p.assignments = std::make_shared<AssignmentNode>(scan_, std::move(s.landmark_of), std::move(s.creates), p.assignments);
     p.log_weight += s.log_weight_factor;
     p.log_likelihood += s.log_weight_factor;
     if (fastslam2_) p.path = ExtendPath(p.path, t, p.pose);  // the pose was resampled at t
   }
+  ++scan_;
   std::vector<double> log_w(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) log_w[i] = particles_[i].log_weight;
   const std::vector<double> w = NormalizeLogWeights(log_w);
@@ -271,6 +274,13 @@ Estimate FastSlam::Finish() {
       estimate_.trajectory.push_back(e);
     }
   }
+  // The best particle's associations (per-particle association: its lineage's), oldest first.
+  std::vector<const AssignmentNode*> scans;
+  for (const AssignmentNode* n = best.assignments.get(); n; n = n->parent.get()) scans.push_back(n);
+  for (auto it = scans.rbegin(); it != scans.rend(); ++it)
+    for (size_t i = 0; i < (*it)->landmark.size(); ++i)
+      estimate_.observation_assignments.push_back(
+          {(*it)->scan, static_cast<int>(i), (*it)->landmark[i], (*it)->created[i] != 0});
   ForEachLandmark(best.map, [&](int key, const LandmarkGaussian& lm) {
     if (!update_.known_ids && lm.counter < config_.report_min_counter) return;
     estimate_.landmarks.push_back({key, lm.mean, lm.covariance, true});

@@ -82,6 +82,7 @@ class FastSlam : public SlamModule {
   std::vector<FastSlamParticle> particles_;
   std::vector<PoseEstimate> cloud_;  ///< weighted mean and covariance, at each path time
   double next_snapshot_s_ = 0.0;
+  int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   Estimate estimate_;
 };
 

@@ -91,6 +91,8 @@ ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<Land
   for (const auto& obs : scan) z.emplace_back(obs.range_m, obs.bearing_rad);
   const Association a = Associate(p, z, scan, o);
   ParticleUpdateSummary s;
+  s.landmark_of.assign(scan.size(), -1);
+  s.creates.assign(scan.size(), 0);
 
   if (o.fastslam2) {  // sample the pose from the proposal that includes the observations
     PoseProposal proposal{p.pose, p.pose_covariance};
@@ -109,10 +111,13 @@ ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<Land
       LandmarkGaussian updated = UpdateLandmark(lm, m);
       ++updated.counter;
       SetLandmark(p.map, key, updated);
+      s.landmark_of[j] = key;
       ++s.matched;
     } else {  // a new landmark: w_{N+1} = p0 (constant over particles with known ids)
       const int new_key = o.known_ids ? scan[j].id : p.next_key++;
       SetLandmark(p.map, new_key, InitializeLandmark(p.pose, z[j], o.R));
+      s.landmark_of[j] = new_key;
+      s.creates[j] = 1;
       if (!o.known_ids) s.log_weight_factor += o.log_p0;
       ++s.created;
     }

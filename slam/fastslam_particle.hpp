@@ -13,6 +13,24 @@
 
 namespace slambox {
 
+/// One scan's associations of one lineage, newest first and shared after resampling like
+/// the path (particle_path.hpp), so each particle's assignments cost O(1) to copy.
+struct AssignmentNode {
+  int scan = 0;
+  std::vector<int> landmark;  ///< per observation: the landmark key it updated or created, or -1
+  std::vector<char> created;  ///< per observation: it created that landmark
+  std::shared_ptr<AssignmentNode> parent;
+
+  AssignmentNode(int s, std::vector<int> l, std::vector<char> c, std::shared_ptr<AssignmentNode> up)
+      : scan(s), landmark(std::move(l)), created(std::move(c)), parent(std::move(up)) {}
+  AssignmentNode(const AssignmentNode&) = delete;
+  AssignmentNode& operator=(const AssignmentNode&) = delete;
+  ~AssignmentNode() {  // iterative release, as PathNode's
+    std::shared_ptr<AssignmentNode> next = std::move(parent);
+    while (next && next.use_count() == 1) next = std::move(next->parent);
+  }
+};
+
 struct FastSlamParticle {
   SE2 pose;  ///< T_world_robot: a sample (1.0), or the motion-predicted mean since the last sample (2.0)
   /// FastSLAM 2.0: motion noise accumulated since the pose was last sampled (the prior of
@@ -24,6 +42,7 @@ struct FastSlamParticle {
   double log_likelihood = 0.0;  ///< sum of all weight factors of this lineage (never reset)
   int origin = 0;               ///< index of its ancestor among the initial particles
   PathPtr path;
+  std::shared_ptr<AssignmentNode> assignments;  ///< what this lineage did with each detection
 };
 
 struct ParticleUpdateOptions {
@@ -44,6 +63,8 @@ struct ParticleUpdateSummary {
   int matched = 0;
   int created = 0;
   int discarded = 0;  ///< removed by the existence counters
+  std::vector<int> landmark_of;  ///< per observation: the key it updated or created, or -1 (ignored)
+  std::vector<char> creates;     ///< per observation: it created that landmark
 };
 
 /// Processes one scan for one particle. `rng` draws FastSLAM 2.0's pose sample.

@@ -125,6 +125,8 @@ Estimate GraphSlam::Finish() {
   d["solution_usable"].emplace_back(t_end, s.usable ? 1.0 : 0.0);
   d["num_keyframes"].emplace_back(t_end, static_cast<double>(graph_.poses.size()));
   d["skipped_scans"].emplace_back(t_end, skipped_scans_);
+  // The front end associates: its assignments, named by the same landmark ids as below.
+  estimate_.observation_assignments = front.observation_assignments;
   for (const char* name : {"num_landmarks", "nis", "nis_dof"})
     if (front.diagnostics.count(name)) d[std::string("frontend_") + name] = front.diagnostics.at(name);
 

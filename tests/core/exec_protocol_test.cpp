@@ -108,6 +108,21 @@ TEST(ExecProtocol, ParsesPosesLandmarksDiagnosticsAndDone) {
   EXPECT_EQ(e.diagnostics.at("iters").at(0).second, 7.0);
 }
 
+TEST(ExecProtocol, ParsesOptionalAssignments) {
+  ExecAnswerParser p;
+  p.ParseLine(R"({"type":"assignment","scan":0,"index":1,"landmark":4,"created":true})", 1, 1.0);
+  p.ParseLine(R"({"type":"assignment","scan":2,"index":0,"landmark":-1})", 2, 1.0);
+  p.ParseLine(R"({"type":"done"})", 3, 1.0);
+  const Estimate e = p.TakeEstimate();
+  ASSERT_EQ(e.observation_assignments.size(), 2u);
+  EXPECT_EQ(e.observation_assignments[0].scan, 0);
+  EXPECT_EQ(e.observation_assignments[0].index, 1);
+  EXPECT_EQ(e.observation_assignments[0].landmark, 4);
+  EXPECT_TRUE(e.observation_assignments[0].created);
+  EXPECT_EQ(e.observation_assignments[1].landmark, -1);
+  EXPECT_FALSE(e.observation_assignments[1].created);
+}
+
 std::string ErrorOf(const std::vector<std::string>& lines, double latest_t_s = 10.0) {
   ExecAnswerParser p;
   try {
@@ -131,6 +146,10 @@ TEST(ExecProtocol, RejectsEveryBrokenAnswerNamingTheLine) {
   failed(ErrorOf({pose, R"({"x_m":1.0})"}), "string 'type'");
   failed(ErrorOf({pose, R"({"type":"pose","t_s":2.0,"x_m":0.0,"y_m":0.0,"theta_rad":0} trailing)"}), "text after");
   failed(ErrorOf({pose, R"({"type":"posture"})"}), "unknown type 'posture'");
+  failed(ErrorOf({pose, R"({"type":"assignment","scan":-1,"index":0,"landmark":2})"}), "'scan' must be an integer");
+  failed(ErrorOf({pose, R"({"type":"assignment","scan":1,"index":0.5,"landmark":2})"}), "'index' must be an integer");
+  failed(ErrorOf({pose, R"({"type":"assignment","scan":1,"index":0,"landmark":-2})"}), "'landmark' must be an integer");
+  failed(ErrorOf({pose, R"({"type":"assignment","scan":1,"index":0,"landmark":2,"created":1})"}), "'created' must be");
   failed(ErrorOf({pose, R"({"type":"pose","t_s":2.0,"x_m":0.0,"y_m":0.0})"}), "missing key 'theta_rad'");
   failed(ErrorOf({pose, R"({"type":"pose","t_s":2.0,"x_m":0.0,"y_m":0.0,"theta_rad":0,"z_m":1})"}), "unknown key 'z_m'");
   failed(ErrorOf({pose, R"({"type":"pose","t_s":2.0,"x_m":"0","y_m":0.0,"theta_rad":0})"}), "'x_m' must be a number");

@@ -178,6 +178,27 @@ TEST(Evaluate, MetricsThatNeedGroundTruthAreNullWithoutIt) {
   EXPECT_EQ(m.at("status"), "ok");
 }
 
+TEST(Evaluate, AssociationAgreementNeedsTrueIdsAndAssignments) {
+  GroundTruth truth = Loop();
+  Estimate est = Copy(truth);
+  // Two scans: trees 0 and 1, then tree 0 again; the module keeps them apart except the
+  // last one, which it makes a new landmark (a duplicate).
+  est.observation_assignments = {{0, 0, 5, true}, {0, 1, 6, true}, {1, 0, 7, true}};
+  const auto none = ToJson(EvaluateEstimate(truth, est).metrics);  // no observation ids: null
+  for (const char* key : {"association_agreement", "association_duplicates", "association_misses",
+                          "association_unused"})
+    EXPECT_TRUE(none.at(key).is_null()) << key;
+  truth.observation_ids = {{0, 1}, {0}};
+  const auto m = ToJson(EvaluateEstimate(truth, est).metrics);
+  EXPECT_DOUBLE_EQ(m.at("association_agreement").get<double>(), 2.0 / 3.0);
+  EXPECT_EQ(m.at("association_duplicates"), 1);
+  EXPECT_EQ(m.at("association_misses"), 0);
+  EXPECT_EQ(m.at("association_unused"), 0);
+  // A real log (no trajectory) is scored too: the ids are its truth.
+  const auto log = ToJson(EvaluateEstimate(GroundTruth{{}, {}, truth.observation_ids}, est).metrics);
+  EXPECT_DOUBLE_EQ(log.at("association_agreement").get<double>(), 2.0 / 3.0);
+}
+
 TEST(Cost, HandComputed) {
   const CostResult c = ComputeCost({0.1, 0.3, 0.2, 0.4}, 1.0, 20.0);
   EXPECT_TRUE(c.available);

@@ -149,8 +149,9 @@ TEST(EkfSlamExistence, TwoTreesCloserThanTheSensorResolvesAreNeverMerged) {
 }
 
 TEST(EkfSlamExistence, ConfirmedLandmarkIsRemovedWhenItsCountReachesZero) {
-  // Seen 3 times (confirmed, existence 3), then missed in view: 2, 1, 0 -> removed.
-  Scripted s({});
+  // Seen 3 times (confirmed, existence 3), then missed in view: 2, 1, 0 -> removed (each
+  // miss costs 1: the configured P_D, not the estimate, which the next test covers).
+  Scripted s({.estimate_detection_rate = false});
   for (int k = 0; k < 3; ++k) s.Scan({{5.0, 0.0, -1}});
   ASSERT_EQ(s.Confirmed(), 1);
   EXPECT_EQ(s.ekf.tracks()[0].existence, 3);
@@ -165,6 +166,42 @@ TEST(EkfSlamExistence, ConfirmedLandmarkIsRemovedWhenItsCountReachesZero) {
   for (int k = 0; k < 3; ++k) far.Scan({{14.8, 0.0, -1}});
   for (int k = 0; k < 10; ++k) far.Scan({});
   EXPECT_EQ(far.Confirmed(), 1);
+}
+
+TEST(EkfSlamExistence, MissCostsTheMeasuredDetectionRate) {
+  // A miss costs min(1, P_band x (detected + 1) / (expected + 1)): P_band the confirmed
+  // landmarks' rate at that range, (seen + P_D) / (expected + 1) with the sensor's P_D = 1
+  // as prior; detected / expected this landmark's sightings and the sum of P_band over its
+  // scans in view (each starting at 1 for the scan that created it). Seen in scans 1-3
+  // (confirmed at 3): miss 1 costs 1 x 4 / 4; a sighting (P_band 1/2); miss 2 costs
+  // P_band = 2/3 times (4 + 1) / (4.5 + 1).
+  Scripted s({});
+  for (int k = 0; k < 3; ++k) s.Scan({{5.0, 0.0, -1}});
+  EXPECT_DOUBLE_EQ(s.ekf.tracks()[0].existence, 3.0);
+  s.Scan({});
+  EXPECT_DOUBLE_EQ(s.ekf.tracks()[0].existence, 2.0);
+  s.Scan({{5.0, 0.0, -1}});
+  EXPECT_DOUBLE_EQ(s.ekf.tracks()[0].existence, 3.0);
+  s.Scan({});
+  EXPECT_NEAR(s.ekf.tracks()[0].existence, 3.0 - 2.0 / 3.0 * 5.0 / 5.5, 1e-12);
+  // Seen every other scan (as often as P_band says) it gains +1 - ~1/2 per pair and
+  // survives three misses in a row; at a cost of 1 per miss its count would stay at 2 and
+  // two misses would remove it.
+  Scripted unit({.estimate_detection_rate = false});
+  for (Scripted* x : {&s, &unit}) {
+    if (x == &unit) {
+      for (int k = 0; k < 3; ++k) unit.Scan({{5.0, 0.0, -1}});
+      unit.Scan({});
+      unit.Scan({{5.0, 0.0, -1}});
+      unit.Scan({});
+    }
+    for (int k = 0; k < 40; ++k)
+      x->Scan(k % 2 ? std::vector<LandmarkObservation>{{5.0, 0.0, -1}} : std::vector<LandmarkObservation>{});
+    for (int k = 0; k < 3; ++k) x->Scan({});
+  }
+  EXPECT_EQ(s.Confirmed(), 1);
+  EXPECT_GT(s.ekf.tracks()[0].existence, 3.0);
+  EXPECT_EQ(unit.ekf.tracks().size(), 0u);
 }
 
 TEST(EkfSlamExistence, TentativeLandmarkIsRemovedAfterItsMisses) {

@@ -1,0 +1,69 @@
+// Victoria Park (the 2D-I-SLSJF preprocessed file) with the tree ids hidden from the
+// modules (`run --hide-landmark-ids`): association_agreement against the file's ids, and
+// the hidden-id map against the known-id one. Skips without the public data
+// ($SLAMBOX_DATA or ../shared/data). Measured values and commands:
+// slam/README_landmark_slam.md, "Victoria Park with the ids hidden".
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <set>
+#include <tuple>
+
+#include "app/registry.hpp"
+#include "app/run_modules.hpp"
+#include "datasets/victoria_park.hpp"
+#include "eval/association_agreement.hpp"
+#include "tests/support/public_data.hpp"
+
+namespace slambox {
+namespace {
+
+struct Expected {
+  const char* module;
+  double min_agreement;  ///< measured minus a margin a regression would cross
+  int min_matched;       ///< hidden-id landmarks within 1 m of a known-id one (one-to-one)
+};
+
+/// One-to-one matches within 1 m, greedy by distance.
+int MatchedWithin1m(const std::vector<LandmarkEstimate>& a, const std::vector<LandmarkEstimate>& b) {
+  std::vector<std::tuple<double, size_t, size_t>> pairs;
+  for (size_t i = 0; i < a.size(); ++i)
+    for (size_t j = 0; j < b.size(); ++j)
+      if (const double d = (a[i].position - b[j].position).norm(); d < 1.0) pairs.emplace_back(d, i, j);
+  std::sort(pairs.begin(), pairs.end());
+  std::set<size_t> used_a, used_b;
+  int n = 0;
+  for (const auto& [d, i, j] : pairs)
+    if (!used_a.count(i) && !used_b.count(j)) used_a.insert(i), used_b.insert(j), ++n;
+  return n;
+}
+
+TEST(VictoriaParkAssociation, HiddenIdsAgreeWithTheFile) {
+  const std::string path = testing::PublicDataFile(SLAMBOX_SOURCE_DIR, "landmark/victoria_park/islsjf/VicPark_clean_data.txt");
+  if (path.empty()) GTEST_SKIP() << "landmark/victoria_park/islsjf/VicPark_clean_data.txt not found; set SLAMBOX_DATA";
+  const Stream known = ReadVictoriaPark(path);
+  Stream hidden = known;
+  const std::vector<std::vector<int>> ids = HideLandmarkIds(hidden);
+  // Measured (this test prints them): ekf-slam agreement 0.9098, 158 of its 168 landmarks
+  // within 1 m of the known-id map; graphslam 0.9098 (its front end associates), 167 of 168.
+  // Before the detection-rate existence and the fitted odometry noise: 0.2660 (ekf-slam
+  // kept 107 landmarks, 3 within 1 m; graphslam diverged). Issue 14's target is 0.99.
+  for (const Expected& x : {Expected{"ekf-slam", 0.90, 150}, Expected{"graphslam", 0.90, 160}}) {
+    const Estimate with_ids = Replay(*FindModule(x.module).create({}), known);
+    const Estimate e = Replay(*FindModule(x.module).create({}), hidden);
+    const AssociationAgreement r = ScoreAssociation(ids, e.observation_assignments);
+    ASSERT_TRUE(r.agreement) << x.module;
+    const int matched = MatchedWithin1m(e.landmarks, with_ids.landmarks);
+    std::printf("%s: agreement %.4f (%lld duplicates, %lld misses, %lld unused of %lld); %zu landmarks, %d within 1 m "
+                "of the %zu known-id ones\n",
+                x.module, *r.agreement, static_cast<long long>(r.duplicates), static_cast<long long>(r.misses),
+                static_cast<long long>(r.unused), static_cast<long long>(r.scored), e.landmarks.size(), matched,
+                with_ids.landmarks.size());
+    EXPECT_GE(*r.agreement, x.min_agreement) << x.module;
+    EXPECT_GE(matched, x.min_matched) << x.module;
+  }
+}
+
+}  // namespace
+}  // namespace slambox
