@@ -25,6 +25,7 @@ struct ExportRequest {
   bool seed_given = false;
   std::vector<std::string> sets;
   ExportFormat format = ExportFormat::kJsonl;
+  RawlogLayout rawlog_layout = RawlogLayout::kObservations;
   std::string output;
 };
 
@@ -73,7 +74,7 @@ void AppendCsvRow(const SensorEvent& event, std::string& out) {
 void Export(const ExportRequest& r) {
   const Stream stream = LoadOrSimulate(r.input, r.seed, r.seed_given, SplitOverrides(r.sets).scenario);
   if (r.format == ExportFormat::kRawlog) {
-    RawlogFormat().write(stream, r.output);
+    RawlogFormat().write(stream, r.output, r.rawlog_layout);
     std::cerr << "exported " << stream.events.size() << " events -> " << r.output << " (MRPT rawlog)\n";
     return;
   }
@@ -101,6 +102,12 @@ void AddExportCommand(CLI::App& app) {
       ->transform(CLI::CheckedTransformer(std::map<std::string, ExportFormat>{
           {"jsonl", ExportFormat::kJsonl}, {"csv", ExportFormat::kCsv}, {"rawlog", ExportFormat::kRawlog}}))
       ->default_str("jsonl");
+  cmd->add_option("--rawlog-layout", request->rawlog_layout,
+                  "rawlog only: observations (a flat list: RawLogViewer, icp-slam) or frames (action + sensory "
+                  "frame pairs: MRPT's kf-slam and rbpf-slam apps)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, RawlogLayout>{
+          {"observations", RawlogLayout::kObservations}, {"frames", RawlogLayout::kFrames}}))
+      ->default_str("observations");
   cmd->add_option("--seed", request->seed, "simulation seed (scenarios only)")
       ->each([request](const std::string&) { request->seed_given = true; });
   cmd->add_option("--set", request->sets, "override a scenario key (scenarios only)");

@@ -39,13 +39,19 @@ struct LaserLog {
   std::optional<LandmarkSensorConfig> landmark_sensor;  ///< when the log has landmark observations
 };
 
+/// How a rawlog is laid out (MRPT supports both): kObservations, a flat list of observations
+/// (odometry poses among them: RawLogViewer, rawlog-edit, icp-slam); kFrames, pairs of an
+/// action (the odometry increment) and a sensory frame (what MRPT's kf-slam and rbpf-slam apps
+/// read: they skip a flat list).
+enum class RawlogLayout { kObservations, kFrames };
+
 /// The entry point of a plugin that reads and writes a log format (the MRPT plugin's
 /// rawlog): `extern "C" const LogFormatEntry* slambox_rawlog_format()`. read() throws
 /// InputError naming the file; write() writes atomically and throws on failure.
 struct LogFormatEntry {
   int api_version;  ///< SLAMBOX_API_VERSION the plugin was built with
   LaserLog (*read)(const std::string& path);
-  void (*write)(const Stream& stream, const std::string& path);
+  void (*write)(const Stream& stream, const std::string& path, RawlogLayout layout);
 };
 
 }  // namespace slambox

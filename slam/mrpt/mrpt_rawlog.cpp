@@ -179,13 +179,33 @@ LaserLog ReadRawlog(const std::string& path, std::uint64_t max_bytes) {
 
 LaserLog ReadRawlog(const std::string& path) { return ReadRawlog(path, limits::kMaxDecompressedBytes); }
 
-void WriteRawlog(const Stream& stream, const std::string& path) {
+void WriteRawlog(const Stream& stream, const std::string& path, RawlogLayout layout) {
   const double origin_s = stream.header.time_origin_s.value_or(0.0);
   const auto stamp = [&](double t_s) { return ToMrptTime(origin_s + t_s); };
   const double sigma_range_m = stream.header.sensors.lidar ? stream.header.sensors.lidar->sigma_range_m : 0.0;
   mrpt::obs::CRawlog rawlog;
   SE2 pose = stream.header.start_pose;
+  SE2 framed = pose;  ///< the odometry pose at the last frame (kFrames)
+  const bool frames = layout == RawlogLayout::kFrames;
+  // kFrames: the motion since the last frame as an action, then the observation in a frame.
+  auto insert = [&](const mrpt::obs::CObservation::Ptr& o, double t_s) {
+    if (!frames) {
+      rawlog.insert(o);
+      return;
+    }
+    mrpt::obs::CActionRobotMovement2D move;
+    move.timestamp = stamp(t_s);
+    move.computeFromOdometry(ToMrpt(framed.inverse() * pose), mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
+    mrpt::obs::CActionCollection actions;
+    actions.insert(move);
+    rawlog.insert(actions);
+    mrpt::obs::CSensoryFrame frame;
+    frame.insert(o);
+    rawlog.insert(frame);
+    framed = pose;
+  };
   auto odometry = [&](double t_s) {
+    if (frames) return;
     auto o = mrpt::obs::CObservationOdometry::Create();
     o->sensorLabel = "ODOMETRY";
     o->timestamp = stamp(t_s);
@@ -200,12 +220,12 @@ void WriteRawlog(const Stream& stream, const std::string& path) {
     } else if (const auto* e = std::get_if<LaserScanEvent>(&event)) {
       auto o = mrpt::obs::CObservation2DRangeScan::Create(ToMrptScan(*e, sigma_range_m));
       o->timestamp = stamp(e->t_s);
-      rawlog.insert(o);
+      insert(o, e->t_s);
     } else if (const auto* e = std::get_if<LandmarkEvent>(&event)) {
       const LandmarkSensorConfig config = stream.header.sensors.landmarks.value_or(LandmarkSensorConfig{});
       auto o = mrpt::obs::CObservationBearingRange::Create(ToMrptBearingRange(*e, config));
       o->timestamp = stamp(e->t_s);
-      rawlog.insert(o);
+      insert(o, e->t_s);
     }
   }
   const std::filesystem::path target(path);

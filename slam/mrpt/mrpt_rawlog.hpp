@@ -12,8 +12,8 @@
 // the sensor pose; landmarkID, -1 = unknown). Other observations are skipped. Times are
 // MRPT timestamps as seconds of their clock (time_origin_s of the stream).
 //
-// Writing (the observations-only layout, which RawLogViewer, rawlog-edit, icp-slam and
-// CRawlog read): first a CObservationOdometry with the start pose at stream time 0, then
+// Writing (default: the observations-only layout, which RawLogViewer, rawlog-edit, icp-slam
+// and CRawlog read; or the frames layout for kf-slam and rbpf-slam, below): first a CObservationOdometry with the start pose at stream time 0, then
 // per event: odometry -> CObservationOdometry with the integrated odometry pose; scan ->
 // CObservation2DRangeScan (label LIDAR, ranges as MRPT's floats, the sensor yawed so each
 // beam is at its stream angle); landmarks -> CObservationBearingRange (label LANDMARKS).
@@ -36,7 +36,10 @@ LaserLog ParseRawlog(const std::string& bytes, const std::string& path);
 /// ReadRawlog with limits::kMaxDecompressedBytes: the plugin's entry.
 LaserLog ReadRawlog(const std::string& path);
 
-/// Writes `path` atomically (a temporary name beside it, then rename).
-void WriteRawlog(const Stream& stream, const std::string& path);
+/// Writes `path` atomically (a temporary name beside it, then rename). kFrames: before each
+/// scan or landmark event, a CActionCollection with the CActionRobotMovement2D of the odometry
+/// since the previous frame (MRPT's default Gaussian motion model), then a CSensoryFrame
+/// holding that one observation; no CObservationOdometry.
+void WriteRawlog(const Stream& stream, const std::string& path, RawlogLayout layout = RawlogLayout::kObservations);
 
 }  // namespace slambox::mrpt_bridge

@@ -30,7 +30,7 @@ using namespace slambox::testing;
 double FloatError(double v) { return std::abs(v) * 6e-8 + 1e-30; }
 
 Stream RoundTrip(const Stream& s, const fs::path& file) {
-  RawlogFormat().write(s, file.string());
+  RawlogFormat().write(s, file.string(), RawlogLayout::kObservations);
   LaserLogOptions o;
   o.dt_s = s.header.dt_s;
   if (s.header.sensors.lidar) o.range_min_m = s.header.sensors.lidar->range_min_m, o.range_max_m = s.header.sensors.lidar->range_max_m;
@@ -84,6 +84,39 @@ TEST(Rawlog, SimulatedStreamsRoundTripThroughMrptsReader) {
   EXPECT_NEAR(back.header.sensors.landmarks->sigma_range_m, posts.header.sensors.landmarks->sigma_range_m, 1e-7);
   EXPECT_NEAR(back.header.sensors.landmarks->range_max_m, posts.header.sensors.landmarks->range_max_m, 1e-5);
   EXPECT_FALSE(fs::exists(dir / ("posts.rawlog.tmp-" + std::to_string(::getpid()))));
+}
+
+TEST(Rawlog, FramesLayoutCarriesTheOdometryBetweenObservations) {
+  // --rawlog-layout frames (what MRPT's kf-slam and rbpf-slam apps read): before each
+  // observation an action with the odometry increment since the previous one.
+  const fs::path dir = FreshTempDir("rawlog_frames");
+  Scenario sc = LoadScenario("landmarks");
+  sc.duration_s = 6.0;
+  const Stream s = Simulate(sc, 3);
+  RawlogFormat().write(s, (dir / "f.rawlog").string(), RawlogLayout::kFrames);
+  const LaserLog log = RawlogFormat().read((dir / "f.rawlog").string());
+  std::vector<SE2> odometry_at;  // the stream's integrated odometry at each landmark event
+  std::vector<const LandmarkEvent*> events;
+  SE2 pose = s.header.start_pose;
+  for (const SensorEvent& e : s.events) {
+    if (const auto* o = std::get_if<OdometryEvent>(&e)) pose = pose * o->delta;
+    if (const auto* l = std::get_if<LandmarkEvent>(&e)) odometry_at.push_back(pose), events.push_back(l);
+  }
+  ASSERT_GT(events.size(), 20u);
+  ASSERT_EQ(log.landmarks.size(), events.size());
+  ASSERT_EQ(log.odometry.size(), events.size() + 1);  // the reader's origin, then one pose per action
+  EXPECT_TRUE(log.scans.empty());
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const SE2 expected = s.header.start_pose.inverse() * odometry_at[k];
+    const SE2& got = log.odometry[k + 1].pose;
+    EXPECT_NEAR(got.x, expected.x, 1e-9) << k;
+    EXPECT_NEAR(got.y, expected.y, 1e-9) << k;
+    EXPECT_NEAR(std::remainder(got.theta - expected.theta, 2 * M_PI), 0.0, 1e-9) << k;
+    EXPECT_NEAR(log.landmarks[k].ts, events[k]->t_s, 1e-6) << k;
+    ASSERT_EQ(log.landmarks[k].observations.size(), events[k]->observations.size()) << k;
+    for (std::size_t i = 0; i < events[k]->observations.size(); ++i)
+      EXPECT_EQ(log.landmarks[k].observations[i].id, events[k]->observations[i].id);
+  }
 }
 
 TEST(Rawlog, CliExportThenConvertGivesTheStreamBack) {
