@@ -16,15 +16,9 @@ std::vector<slambox::ModuleInfo> MrptModules() {
 
 SLAMBOX_PLUGIN("slambox-mrpt", MrptModules)
 
-namespace {
-void WriteRawlogAs(const slambox::Stream& stream, const std::string& path, slambox::RawlogLayout layout) {
-  slambox::mrpt_bridge::WriteRawlog(stream, path, layout);
-}
-}  // namespace
-
 extern "C" __attribute__((visibility("default"))) const slambox::LogFormatEntry* slambox_rawlog_format() {
   using Read = slambox::LaserLog (*)(const std::string&);
   static const slambox::LogFormatEntry entry{SLAMBOX_API_VERSION, static_cast<Read>(&slambox::mrpt_bridge::ReadRawlog),
-                                             &WriteRawlogAs};
+                                             &slambox::mrpt_bridge::WriteRawlog};
   return &entry;
 }
