@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "core/se2.hpp"
@@ -74,6 +75,7 @@ struct FanScratch {
   std::vector<std::uint32_t> stamp;  ///< per primitive: the fan that last collected it
   std::uint32_t fan = 0;
   std::vector<int> items;            ///< the primitives near this fan's origin
+  std::vector<std::pair<double, int>> order;  ///< (distance from the origin, primitive), nearest first
 };
 
 class StaticGeometryIndex {
@@ -85,8 +87,9 @@ class StaticGeometryIndex {
   /// A LIDAR's fan: ranges[i] = Cast(origin, dirs[i], max_range_m), bit-identical, for unit
   /// directions dirs[i] at world angle first_angle_rad + i increment_rad (increment > 0; a full
   /// circle may wrap). Each primitive within max_range_m is tested only on the beams inside its
-  /// angular extent seen from the origin (padded by 1e-6 rad), found once per fan: one pass
-  /// over nearby primitives instead of a cell walk per ray (sim/ray_fan.cpp).
+  /// angular extent seen from the origin (padded by 1e-6 rad), nearest primitive first, and
+  /// not on beams already shorter than its distance: one pass over nearby primitives instead
+  /// of a cell walk per ray (sim/ray_fan.cpp).
   void CastFan(const Eigen::Vector2d& origin, double first_angle_rad, double increment_rad,
                const std::vector<Eigen::Vector2d>& dirs, double max_range_m, FanScratch& scratch,
                std::vector<double>& ranges) const;
