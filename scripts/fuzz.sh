@@ -42,24 +42,31 @@ for t in "${targets[@]}"; do
     budget=(-runs=20000 -seed=1 -max_total_time=30)
   fi
   # -timeout: an input over 1 s is a finding (issue 17's target); the smoke allows 10 s so
-  # that a loaded CI machine cannot turn a slow moment into a failure.
-  timeout=1
+  # that a loaded CI machine cannot turn a slow moment into a failure. libFuzzer's clock is
+  # wall time: on a shared machine (load ~9 on 2 cores, measured) a unit of a few ms was
+  # flagged after 1 s descheduled. There, run with FUZZ_TIMEOUT_S=10: -report_slow_units=1
+  # keeps each new slowest unit over 1 s as build-fuzz/crashes/NAME/slow-unit-* to replay
+  # alone (`build-fuzz/tests/fuzz/fuzz_NAME FILE` prints its time); none kept, none was slow.
+  timeout=${FUZZ_TIMEOUT_S:-1}
   [ -n "$smoke" ] && timeout=10
   dict=()
   [ -f "tests/fuzz/$name.dict" ] && dict=("-dict=tests/fuzz/$name.dict")
   log="build-fuzz/$t.log"
   if [ -n "$smoke" ]; then echo "fuzz: $t smoke (seeds + up to 20000 fixed-seed mutations, 30 s at most)"; else echo "fuzz: $t for ${seconds} s or ${FUZZ_RUNS:-1000000} executions"; fi
   started=$SECONDS
+  touch "$log.start"
   # -rss_limit_mb: a reader asking for more memory than that is a finding too.
   if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    "build-fuzz/tests/fuzz/$t" "${budget[@]}" -timeout="$timeout" -rss_limit_mb=2048 -max_len=65536 \
+    "build-fuzz/tests/fuzz/$t" "${budget[@]}" -timeout="$timeout" -report_slow_units=1 -rss_limit_mb=2048 -max_len=65536 \
     -print_final_stats=1 -artifact_prefix="build-fuzz/crashes/$name/" "${dict[@]}" \
     "$corpus" "tests/fuzz/corpus/$name" >"$log" 2>&1; then
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
     cov=$(grep -oE '^#[0-9]+[[:space:]]+DONE[[:space:]]+cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 |
       sed -E 's/.*cov: ([0-9]+) ft: ([0-9]+)/cov \1, ft \2/' || true)
     kept=$(find "$corpus" -type f | wc -l)
-    echo "fuzz: $t ok: $execs executions in $((SECONDS - started)) s, ${cov:-cov ?}, $kept corpus entries kept"
+    slow=$(find "build-fuzz/crashes/$name" -name 'slow-unit-*' -newer "$log.start" | wc -l)
+    echo "fuzz: $t ok: $execs executions in $((SECONDS - started)) s, ${cov:-cov ?}, $kept corpus entries kept," \
+      "$slow units over 1 s (build-fuzz/crashes/$name/slow-unit-*)"
   else
     status=1
     echo "fuzz: $t FOUND A PROBLEM (input in build-fuzz/crashes/$name/):"
