@@ -18,6 +18,12 @@ const EnumNames<EkfAssociation>& EkfAssociationNames() {
   return names;
 }
 
+const EnumNames<ExistenceRule>& ExistenceRuleNames() {
+  static const EnumNames<ExistenceRule> names = {{ExistenceRule::kSequentialTest, "sprt"},
+                                                 {ExistenceRule::kCounts, "counts"}};
+  return names;
+}
+
 void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("association", c.association, EkfAssociationNames(),
          "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");
@@ -27,11 +33,21 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("jcbb_joint_probability", c.jcbb_joint_probability, "-", "JCBB joint compatibility confidence",
          Range{.min = 0, .max = 1, .min_open = true, .max_open = true});
   b.Bind("jcbb_max_nodes", c.jcbb_max_nodes, "nodes", "JCBB search budget per scan", AtLeast(1));
-  b.Bind("confirm_sightings", c.confirm_sightings, "scans", "sightings that confirm a tentative landmark", AtLeast(1));
-  b.Bind("tentative_max_misses", c.tentative_max_misses, "scans", "misses in view that delete a tentative landmark",
+  b.Bind("tentative_existence", c.tentative_existence, ExistenceRuleNames(),
+         "unknown ids, tentative landmarks: sprt (Wald's test, each scan in view a trial of 'real: detected with the "
+         "measured P_D(range), then in its gate with P[chi2(2) < gate_accept_chi2]' against 'clutter in its gate: "
+         "1 - exp(-mu)', mu from clutter_per_scan and the gate's area; prior odds from the births against "
+         "clutter_per_scan; confirmed at log((1-b)/a), deleted at log(b/(1-a)), a = b = the gate's miss probability) "
+         "or counts (confirm_sightings, tentative_max_misses, tentative_max_age_s)");
+  b.Bind("confirmed_existence", c.confirmed_existence, ExistenceRuleNames(),
+         "unknown ids, confirmed landmarks: sprt (that test continued from the landmark's birth, removed at "
+         "log(b/(1-a))) or counts (+1 per sighting, -P_D per miss, removed at 0)");
+  b.Bind("confirm_sightings", c.confirm_sightings, "scans", "tentative_existence=counts: sightings that confirm a tentative landmark",
          AtLeast(1));
+  b.Bind("tentative_max_misses", c.tentative_max_misses, "scans",
+         "tentative_existence=counts: misses in view that delete a tentative landmark", AtLeast(1));
   b.Bind("tentative_max_age_s", c.tentative_max_age_s, "s",
-         "a tentative landmark not confirmed this long after its creation is deleted", Above(0));
+         "a tentative landmark not confirmed this long after its creation is deleted (tentative_existence=sprt: only while out of view)", Above(0));
   b.Bind("visibility_margin_m", c.visibility_margin_m, "m", "a landmark is expected in view this far inside range_max",
          AtLeast(0));
   b.Bind("merge_probability", c.merge_probability, "-",
@@ -71,6 +87,9 @@ void EkfSlam::Start(const StreamHeader& header) {
   clutter_density_per_m2_ = sensor.clutter_per_scan / (range_max_m_ * range_max_m_ * half_fov_rad_);
   known_ids_ = config_.association == EkfAssociation::kKnown ||
                (config_.association == EkfAssociation::kAuto && sensor.known_ids);
+  gate_probability_ = ChiSquareCdf(config_.gate_accept_chi2, 2.0);
+  const double gate_miss = std::clamp(1.0 - gate_probability_, 1e-12, 0.49);
+  wald_ = MakeWaldThresholds(gate_miss, gate_miss);
   detection_ = MakeDetectionRate(range_max_m_, config_.detection_rate_bands, sensor.detection_prob);
   state_ = MakeInitialState(header.start_pose);
   tracks_.clear();
@@ -78,6 +97,8 @@ void EkfSlam::Start(const StreamHeader& header) {
   merged_into_.clear();
   co_observed_.clear();
   held_log_clutter_.clear();
+  clutter_per_scan_ = sensor.clutter_per_scan;
+  births_ = 0;
   next_key_ = 0;
   scan_ = 0;
   prior_position_ = header.start_pose.translation();
@@ -130,6 +151,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
   else target = AssociateJcbb(state_, z, R_, gates).landmark;
   const std::vector<bool> held = HoldUncertainPairings(z, target);
+  const std::vector<double> mu = ExpectedClutterInGates();  // the gates the pairings were made in
 
   // One batched update with every matched observation, linearized at the current
   // estimate, or for FEJ at the robot's prior and the landmark's first estimate.
@@ -152,24 +174,27 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   if (!update.applied && !lin.empty()) Record(event.t_s, "update_rejected", 1.0);
 
   int created = 0, discarded = 0;
+  for (size_t i = 0; i < obs.size(); ++i) created += target[i] == Association::kNew ? 1 : 0;
+  births_ += created;
+  const double prior_log_ratio = NewLandmarkPriorLogRatio();
   for (size_t i = 0; i < obs.size(); ++i) {
     if (target[i] == Association::kDiscard) ++discarded;
     if (target[i] != Association::kNew) continue;
     const int j = AddLandmark(state_, z[i], R_);
-    LandmarkTrack track{next_key_++, known_ids_ ? obs[i].id : -1, 1, 0, 1,
-                        known_ids_ || config_.confirm_sightings <= 1, event.t_s, state_.Landmark(j)};
+    const bool confirmed =
+        known_ids_ || (config_.tentative_existence == ExistenceRule::kCounts && config_.confirm_sightings <= 1);
+    LandmarkTrack track{next_key_++, known_ids_ ? obs[i].id : -1, 1, 0, 1, confirmed, event.t_s, state_.Landmark(j)};
+    track.log_ratio = prior_log_ratio;
     if (known_ids_) key_of_id_[obs[i].id] = track.key;
     keys[i] = track.key;
     tracks_.push_back(track);
-    ++created;
   }
   // Landmarks seen in one scan are distinct for the rest of the run (never merged).
   if (!known_ids_)
     for (size_t a = 0; a < keys.size(); ++a)
       for (size_t b = a + 1; b < keys.size(); ++b)
         if (keys[a] >= 0 && keys[b] >= 0 && keys[a] != keys[b]) co_observed_.insert(std::minmax(keys[a], keys[b]));
-  for (size_t j = 0; j < held.size(); ++j) matched[j] = matched[j] || held[j];  // seen, not missed
-  ManageExistence(matched, event.t_s);
+  ManageExistence(matched, held, mu, event.t_s);
   const int merged = known_ids_ ? 0 : MergeDuplicates();
 
   int confirmed = 0;
@@ -230,41 +255,81 @@ std::vector<bool> EkfSlam::HoldUncertainPairings(const std::vector<Eigen::Vector
   return held;
 }
 
-void EkfSlam::ManageExistence(const std::vector<bool>& matched, double t_s) {
+std::vector<double> EkfSlam::ExpectedClutterInGates() const {
+  std::vector<double> mu(tracks_.size(), 0.0);
+  if (known_ids_ || !(clutter_density_per_m2_ > 0)) return mu;
+  const SE2 pose = state_.Pose();
+  for (size_t j = 0; j < tracks_.size(); ++j) {
+    const int index = static_cast<int>(j);
+    const double range_m = PredictObservation(pose, state_.Landmark(index)).z.x();
+    mu[j] = ExpectedFalseInGate(InnovationCovariance(state_, index, R_), range_m, config_.gate_accept_chi2,
+                                clutter_density_per_m2_);
+  }
+  return mu;
+}
+
+double EkfSlam::NewLandmarkPriorLogRatio() const {
+  // Of the births_ detections that started a landmark in scan_ + 1 scans, clutter_per_scan
+  // per scan are expected to be clutter (the gates of mapped landmarks take a negligible
+  // share of the footprint); the rest are real. Laplace's rule keeps the fraction inside
+  // (0, 1): a stream of clutter only drives the prior odds of a new landmark towards 0.
+  const double n = births_, clutter = clutter_per_scan_ * (scan_ + 1);
+  const double p_real = std::clamp((n - clutter + 1.0) / (n + 2.0), 1.0 / (n + 2.0), (n + 1.0) / (n + 2.0));
+  return std::log(p_real / (1.0 - p_real));
+}
+
+bool EkfSlam::ReadyToConfirm(const LandmarkTrack& t) const {
+  return config_.tentative_existence == ExistenceRule::kSequentialTest ? t.log_ratio >= wald_.log_confirm
+                                                                      : t.sightings >= config_.confirm_sightings;
+}
+
+void EkfSlam::ManageExistence(const std::vector<bool>& matched, const std::vector<bool>& held,
+                              const std::vector<double>& mu, double t_s) {
   if (known_ids_) return;  // a known id names a real landmark: never removed
   const SE2 pose = state_.Pose();
   for (int j = static_cast<int>(matched.size()) - 1; j >= 0; --j) {
     LandmarkTrack& t = tracks_[j];
     const bool was_confirmed = t.confirmed;
-    if (matched[j]) t.confirmed = t.confirmed || t.sightings >= config_.confirm_sightings;
-    if (!t.confirmed && t_s - t.created_t_s > config_.tentative_max_age_s) {
+    const bool seen = matched[j] || held[j];  // held: seen, not missed
+    const bool tentative_sprt = config_.tentative_existence == ExistenceRule::kSequentialTest;
+    if (!tentative_sprt && seen) t.confirmed = t.confirmed || ReadyToConfirm(t);
+    const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
+    const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
+    // Not confirmed in time: with counts at any place, with the sequential test only out
+    // of view, where no trial can decide it (nor should it stay where a later real
+    // observation could be paired with it).
+    if (!t.confirmed && (!tentative_sprt || !in_view) && t_s - t.created_t_s > config_.tentative_max_age_s) {
       RemoveLandmark(state_, j);
       tracks_.erase(tracks_.begin() + j);
       continue;
     }
-    const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
-    const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
     if (!in_view) continue;
-    // A miss is evidence against existence in proportion to how likely a detection was,
-    // from the scans before this one: P_D at this range over all confirmed landmarks,
-    // for a confirmed landmark times its own visibility, its detections over the
-    // detections P_D predicted for it (Laplace's rule, prior 1; a tentative one has too
-    // short a history). With P_D = 1 one miss cancels one sighting; a tree the detector
-    // sees less often than others at its range (occluded, thin) keeps a positive drift,
-    // and a confirmed landmark never seen again pays a harmonic sum.
+    // Counts: a miss costs how likely a detection was (before this scan): P_D at this
+    // range over the confirmed landmarks, for a confirmed one times its own visibility,
+    // its detections over those P_D predicted for it (a tentative one's history is too short).
     const double band = DetectionProbability(detection_, zp.x());
     const double visibility = t.confirmed ? (t.detected_scans + 1.0) / (t.expected_detections + 1.0) : 1.0;
     const double cost = config_.estimate_detection_rate ? std::min(1.0, band * visibility) : 1.0;
     // Confirmed landmarks (before this scan: its own sighting may have confirmed it) measure P_D.
-    if (was_confirmed) CountExpected(detection_, zp.x(), matched[j]);
+    if (was_confirmed) CountExpected(detection_, zp.x(), seen);
     t.expected_detections += band;
-    if (matched[j]) {
-      t.detected_scans += 1.0;
-      continue;
+    if (seen) t.detected_scans += 1.0;
+    // A trial of the sequential test takes P_D at this range, not the landmark's own
+    // visibility: that is estimated from the very trials under test, and a phantom's few
+    // sightings would make its misses ever cheaper. A held pairing is no evidence either way.
+    const double p_detect = config_.estimate_detection_rate ? band : 1.0;
+    if (!held[j])
+      t.log_ratio += matched[j] ? DetectedLogRatio(p_detect, gate_probability_, mu[j])
+                                : MissedLogRatio(p_detect, gate_probability_, mu[j]);
+    if (!seen) {
+      t.misses += cost;
+      t.existence -= cost;
     }
-    t.misses += cost;
-    t.existence -= cost;
-    const bool remove = t.confirmed ? t.existence <= 0 : t.misses >= config_.tentative_max_misses;
+    if (tentative_sprt && matched[j]) t.confirmed = t.confirmed || ReadyToConfirm(t);  // by a sighting
+    const ExistenceRule rule = t.confirmed ? config_.confirmed_existence : config_.tentative_existence;
+    const bool remove = rule == ExistenceRule::kSequentialTest ? t.log_ratio <= wald_.log_delete
+                        : t.confirmed                          ? !seen && t.existence <= 0
+                                                               : !seen && t.misses >= config_.tentative_max_misses;
     if (remove) {
       RemoveLandmark(state_, j);
       tracks_.erase(tracks_.begin() + j);
@@ -296,7 +361,8 @@ int EkfSlam::MergeDuplicates() {
         keep.existence += gone.existence;
         keep.expected_detections += gone.expected_detections;
         keep.detected_scans += gone.detected_scans;
-        keep.confirmed = keep.confirmed || gone.confirmed || keep.sightings >= config_.confirm_sightings;
+        keep.log_ratio += gone.log_ratio;  // independent trials of one landmark
+        keep.confirmed = keep.confirmed || gone.confirmed || ReadyToConfirm(keep);
         merged_into_[gone.key] = keep.key;
         // What was seen together with the removed landmark was seen together with the kept one.
         for (const auto& [k1, k2] : std::vector<std::pair<int, int>>(co_observed_.begin(), co_observed_.end())) {

@@ -2,13 +2,18 @@
 // `ekf-slam`: EKF-SLAM over robot pose and point landmarks (Thrun, Prob. Robotics,
 // Ch. 10; Bailey et al. 2006). Odometry drives the prediction, each landmark scan is one
 // batched Joseph-form update, unseen landmarks are added through the inverse observation
-// model. Association by known ids, nearest neighbour with two gates, or JCBB; with
-// unknown ids a new landmark is tentative until seen `confirm_sightings` times and is
-// removed if it is missed `tentative_max_misses` times first or not confirmed within
-// `tentative_max_age_s` (so clutter does not become map, nor stay in the state out of view
-// where a later real observation could be paired with it). A confirmed landmark keeps an existence count (+1 seen, -P_D missed while
-// predicted inside range and field of view, P_D the rate the run measures at that range
-// scaled by the landmark's own visibility) and is removed at 0. Two landmarks that
+// model. Association by known ids, nearest neighbour with two gates, or JCBB. With
+// unknown ids a new landmark is tentative until seen `confirm_sightings` times, deleted if
+// missed `tentative_max_misses` times first or not confirmed within `tentative_max_age_s`
+// (`tentative_existence=counts`, the default). A landmark's existence is also Wald's
+// sequential test (slam/landmark_existence.hpp): every scan that predicts it in range and
+// field of view is a trial of "real, detected with P_D (the rate the run measures at that
+// range, slam/detection_rate.hpp) and then in its gate" against "clutter reappearing in
+// its gate" (mu, the clutter the configured density puts in the gate); a confirmed
+// landmark is removed at Wald's lower bound for the gate's own error probability
+// (`confirmed_existence=sprt`, the default; `counts`: +1 seen, -P_D missed, removed at 0),
+// and with `tentative_existence=sprt` a tentative one is confirmed and deleted at the two
+// bounds. Two landmarks that
 // become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
 // ever seen in one scan (then they are two landmarks, however close). A pairing whose gate
 // may hold clutter (the lone re-observation of an old landmark after drift) is held until
@@ -24,6 +29,7 @@
 #include "slam/data_association.hpp"
 #include "slam/detection_rate.hpp"
 #include "slam/ekf_slam_filter.hpp"
+#include "slam/landmark_existence.hpp"
 
 namespace slambox {
 
@@ -33,15 +39,26 @@ enum class EkfAssociation { kAuto, kKnown, kNearestNeighbour, kJcbb };
 /// auto, known, nn, jcbb.
 const EnumNames<EkfAssociation>& EkfAssociationNames();
 
+/// Unknown ids: how a landmark is confirmed and removed. Sequential test: Wald's SPRT of
+/// "real, seen with the measured P_D" against "clutter reappearing in its gate"
+/// (slam/landmark_existence.hpp); counts: confirm_sightings / tentative_max_misses /
+/// tentative_max_age_s for tentative landmarks, the existence count for confirmed ones.
+/// Chosen separately for tentative and confirmed landmarks.
+enum class ExistenceRule { kSequentialTest, kCounts };
+/// sprt, counts.
+const EnumNames<ExistenceRule>& ExistenceRuleNames();
+
 struct EkfSlamConfig {
   EkfAssociation association = EkfAssociation::kAuto;
   double gate_accept_chi2 = 9.21;       ///< [chi2, 2 dof] accept the nearest landmark below this d^2
   double gate_new_chi2 = 25.0;          ///< [chi2, 2 dof] new landmark if every d^2 is above this
   double jcbb_joint_probability = 0.99; ///< [-] JCBB joint compatibility confidence
   int jcbb_max_nodes = 20000;           ///< [nodes] JCBB search budget per scan
-  int confirm_sightings = 3;            ///< [scans] sightings that confirm a tentative landmark (unknown ids)
-  int tentative_max_misses = 3;         ///< [scans] misses in view that delete a tentative landmark
-  double tentative_max_age_s = 2.0;     ///< [s] a tentative landmark not confirmed this long after its creation is deleted
+  ExistenceRule tentative_existence = ExistenceRule::kCounts;  ///< unknown ids: confirmation and deletion of tentative landmarks
+  ExistenceRule confirmed_existence = ExistenceRule::kSequentialTest;  ///< unknown ids: removal of confirmed landmarks
+  int confirm_sightings = 3;            ///< [scans] tentative_existence=counts: sightings that confirm a tentative landmark
+  int tentative_max_misses = 3;         ///< [scans] tentative_existence=counts: misses in view that delete a tentative landmark
+  double tentative_max_age_s = 2.0;     ///< [s] a tentative landmark not confirmed this long after its creation is deleted (sprt: while out of view)
   double visibility_margin_m = 0.5;     ///< [m] a landmark counts as missed only this far inside range_max
   double merge_probability = 0.99;      ///< [-] merge two landmarks whose difference d^2 is below this chi2 quantile (0 = never)
   bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until repeated scans make that unlikelier than a gate miss
@@ -65,6 +82,7 @@ struct LandmarkTrack {
   Eigen::Vector2d first_estimate = Eigen::Vector2d::Zero();  ///< FEJ linearization point
   double expected_detections = 1;  ///< sum of P_D(range) over the scans it was predicted in view (its first: 1)
   double detected_scans = 1;       ///< ... of which it was detected in (its first included)
+  double log_ratio = 0;  ///< existence=sprt: log odds real / phantom (prior at its birth + its scans in view)
 };
 
 class EkfSlam : public SlamModule {
@@ -87,7 +105,14 @@ class EkfSlam : public SlamModule {
   std::vector<int> AssociateKnownIds(const std::vector<LandmarkObservation>& obs) const;
   /// Discards (holds) the pairings of `target` that may be clutter; returns the held landmarks.
   std::vector<bool> HoldUncertainPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target);
-  void ManageExistence(const std::vector<bool>& matched, double t_s);
+  /// `mu`: per landmark the clutter expected in its gate at association time (sprt only).
+  void ManageExistence(const std::vector<bool>& matched, const std::vector<bool>& held, const std::vector<double>& mu,
+                       double t_s);
+  /// Per landmark, the clutter expected in its individual gate (ExpectedFalseInGate).
+  std::vector<double> ExpectedClutterInGates() const;
+  bool ReadyToConfirm(const LandmarkTrack& t) const;
+  /// existence=sprt: log prior odds that a new landmark is real (births against clutter_per_scan).
+  double NewLandmarkPriorLogRatio() const;
   int MergeDuplicates();
   bool SeenTogether(int key_a, int key_b) const { return co_observed_.count(std::minmax(key_a, key_b)) > 0; }
   void Record(double t_s, const std::string& name, double value) {
@@ -100,6 +125,8 @@ class EkfSlam : public SlamModule {
   double range_max_m_ = 1e9;
   double half_fov_rad_ = M_PI;
   double clutter_density_per_m2_ = 0.0;  ///< the sensor's clutter_per_scan over its footprint
+  double gate_probability_ = 0.99;  ///< P[chi2(2) < gate_accept_chi2]: a real landmark's detection falls in its gate
+  WaldThresholds wald_;  ///< existence=sprt: alpha = beta = the gate's miss probability 1 - gate_probability_
   bool known_ids_ = true;
   DetectionRate detection_;  ///< P_D by range, from the confirmed landmarks (unknown ids)
   EkfSlamState state_;
@@ -108,6 +135,8 @@ class EkfSlam : public SlamModule {
   std::map<int, int> merged_into_;  ///< removed key -> key it was merged into
   std::set<std::pair<int, int>> co_observed_;  ///< (smaller, larger) keys seen in one scan
   std::map<int, double> held_log_clutter_;  ///< key -> log P[clutter] of its pairing, held in consecutive scans
+  double clutter_per_scan_ = 0.0;  ///< the sensor's configured Poisson mean of false detections
+  double births_ = 0;  ///< detections that started a new landmark (unknown ids)
   int next_key_ = 0;
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction

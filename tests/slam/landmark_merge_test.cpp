@@ -150,8 +150,9 @@ TEST(EkfSlamExistence, TwoTreesCloserThanTheSensorResolvesAreNeverMerged) {
 
 TEST(EkfSlamExistence, ConfirmedLandmarkIsRemovedWhenItsCountReachesZero) {
   // Seen 3 times (confirmed, existence 3), then missed in view: 2, 1, 0 -> removed (each
-  // miss costs 1: the configured P_D, not the estimate, which the next test covers).
-  Scripted s({.estimate_detection_rate = false});
+  // miss costs 1: the configured P_D, not the estimate, which the next test covers). The
+  // count rule (confirmed_existence=counts; the default sprt: tests/slam/landmark_existence_test.cpp).
+  Scripted s({.confirmed_existence = ExistenceRule::kCounts, .estimate_detection_rate = false});
   for (int k = 0; k < 3; ++k) s.Scan({{5.0, 0.0, -1}});
   ASSERT_EQ(s.Confirmed(), 1);
   EXPECT_EQ(s.ekf.tracks()[0].existence, 3);
@@ -162,7 +163,7 @@ TEST(EkfSlamExistence, ConfirmedLandmarkIsRemovedWhenItsCountReachesZero) {
   s.Scan({});
   EXPECT_EQ(s.ekf.tracks().size(), 0u);
   // Out of range it is not expected, so it is not missed.
-  Scripted far({});
+  Scripted far({.confirmed_existence = ExistenceRule::kCounts});
   for (int k = 0; k < 3; ++k) far.Scan({{14.8, 0.0, -1}});
   for (int k = 0; k < 10; ++k) far.Scan({});
   EXPECT_EQ(far.Confirmed(), 1);
@@ -174,8 +175,8 @@ TEST(EkfSlamExistence, MissCostsTheMeasuredDetectionRate) {
   // as prior; detected / expected this landmark's sightings and the sum of P_band over its
   // scans in view (each starting at 1 for the scan that created it). Seen in scans 1-3
   // (confirmed at 3): miss 1 costs 1 x 4 / 4; a sighting (P_band 1/2); miss 2 costs
-  // P_band = 2/3 times (4 + 1) / (4.5 + 1).
-  Scripted s({});
+  // P_band = 2/3 times (4 + 1) / (4.5 + 1). (The count rule, confirmed_existence=counts.)
+  Scripted s({.confirmed_existence = ExistenceRule::kCounts});
   for (int k = 0; k < 3; ++k) s.Scan({{5.0, 0.0, -1}});
   EXPECT_DOUBLE_EQ(s.ekf.tracks()[0].existence, 3.0);
   s.Scan({});
@@ -187,7 +188,7 @@ TEST(EkfSlamExistence, MissCostsTheMeasuredDetectionRate) {
   // Seen every other scan (as often as P_band says) it gains +1 - ~1/2 per pair and
   // survives three misses in a row; at a cost of 1 per miss its count would stay at 2 and
   // two misses would remove it.
-  Scripted unit({.estimate_detection_rate = false});
+  Scripted unit({.confirmed_existence = ExistenceRule::kCounts, .estimate_detection_rate = false});
   for (Scripted* x : {&s, &unit}) {
     if (x == &unit) {
       for (int k = 0; k < 3; ++k) unit.Scan({{5.0, 0.0, -1}});

@@ -1,0 +1,35 @@
+#pragma once
+// A landmark's existence as Wald's sequential probability ratio test (Wald 1945; the
+// track confirmation of Blackman & Popoli 1999, "Design and Analysis of Modern Tracking
+// Systems", Sec. 6.2). Each scan in which the landmark is predicted in view is one
+// Bernoulli trial under two hypotheses:
+//   H1 "real": detected with P_D (the rate measured at its range) and then inside its gate
+//              with the gate's probability P_G = P[chi2(2) < gate_accept];
+//   H0 "phantom" (it was clutter): its gate holds at least one clutter detection with
+//              1 - exp(-mu), mu the clutter expected in the gate (ExpectedFalseInGate).
+// The log likelihood ratio of the trials is summed; the landmark is confirmed when the sum
+// reaches log((1 - beta) / alpha) and deleted when it falls to log(beta / (1 - alpha))
+// (Wald's bounds: alpha the probability of confirming a phantom, beta of deleting a real
+// landmark). Without clutter a pairing cannot come from a phantom: one re-sighting
+// confirms, and misses then take very long to delete it.
+namespace slambox {
+
+struct WaldThresholds {
+  double log_confirm = 0.0;  ///< accept H1 at or above (log units)
+  double log_delete = 0.0;   ///< accept H0 at or below
+};
+
+/// Wald's approximate bounds for error probabilities alpha (false confirm) and beta
+/// (false delete), both in (0, 0.5).
+WaldThresholds MakeWaldThresholds(double alpha, double beta);
+
+/// Largest |log likelihood ratio| of one trial: keeps sums finite when a hypothesis makes
+/// the outcome impossible (no clutter: mu = 0), far beyond any threshold of a probability.
+constexpr double kMaxTrialLogRatio = 50.0;
+
+/// log P[paired in its gate | real] / P[paired | phantom] = log(P_D P_G / (1 - exp(-mu))).
+double DetectedLogRatio(double p_detect, double p_gate, double mu);
+/// log P[not paired | real] / P[not paired | phantom] = log((1 - P_D P_G) / exp(-mu)).
+double MissedLogRatio(double p_detect, double p_gate, double mu);
+
+}  // namespace slambox
