@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "app/render_library.hpp"
+#include "core/file_status.hpp"
 
 namespace slambox {
 
@@ -14,7 +15,7 @@ namespace fs = std::filesystem;
 /// True when figures/ has no PNG or any PNG is older than the results file.
 bool FiguresStale(const fs::path& dir, const fs::path& results) {
   const fs::path figs = dir / "figures";
-  if (!fs::exists(figs)) return true;
+  if (!PathExists(figs)) return true;
   bool any = false;
   const auto results_time = fs::last_write_time(results);
   for (const auto& e : fs::directory_iterator(figs)) {
@@ -45,7 +46,7 @@ void AddReportCommand(CLI::App& app) {
       }
     } else {
       const fs::path results = d / "results.csv";
-      if (*force || !fs::exists(results) || FiguresStale(d, results)) Render().sweep_figures(*dir);
+      if (*force || !PathExists(results) || FiguresStale(d, results)) Render().sweep_figures(*dir);
     }
     Render().write_report(*dir);
     std::cout << "wrote " << (d / "report.md").string() << " and " << (d / "report.html").string() << "\n";

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/file_status.hpp"
 
 namespace slambox {
 
@@ -217,7 +218,7 @@ std::vector<std::string> ExecPathFolders() {
 std::string FindExecDeclaration(const std::string& module_name) {
   const std::string spec = module_name.substr(5);  // after "exec:"
   if (spec.find('/') != std::string::npos || fs::path(spec).extension() == ".yaml") {
-    if (!fs::is_regular_file(spec))
+    if (!IsRegularFile(spec))
       throw InputError("--algo " + module_name, 0, "no exec declaration file '" + spec + "'",
                        "give the path of a NAME.yaml declaration (docs/exec_protocol.md)");
     return spec;
@@ -226,7 +227,7 @@ std::string FindExecDeclaration(const std::string& module_name) {
   folders.push_back(".");
   for (const auto& f : folders) {
     const fs::path p = fs::path(f) / (spec + ".yaml");
-    if (fs::is_regular_file(p)) return p.string();
+    if (IsRegularFile(p)) return p.string();
   }
   throw InputError("--algo " + module_name, 0, "no declaration " + spec + ".yaml in $SLAMBOX_EXEC_PATH or here",
                    "add its folder to SLAMBOX_EXEC_PATH, or write --algo exec:PATH/" + spec + ".yaml");

@@ -11,6 +11,7 @@
 #include "app/child_process.hpp"
 #include "core/error.hpp"
 #include "core/exec_protocol.hpp"
+#include "core/file_status.hpp"
 
 namespace slambox {
 
@@ -157,7 +158,7 @@ const ModuleInfo* Add(ExecModuleCache& c, const ExecDeclaration& declaration, co
   if (const auto it = c.by_name.find(declaration.name); it != c.by_name.end()) {
     const std::string& known = c.file_of.at(declaration.name);
     const bool same = known == declaration.file ||
-                      (fs::exists(known) && fs::exists(declaration.file) && fs::equivalent(known, declaration.file));
+                      SameFile(known, declaration.file);
     if (!same)
       throw InputError(asked_as, 0,
                        "two declarations are both named " + declaration.name + ": " + known + " and " +

@@ -14,6 +14,7 @@
 #include "app/render_library.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/file_status.hpp"
 #include "core/finite_estimate.hpp"
 #include "core/json_io.hpp"
 #include "core/ros_map.hpp"
@@ -33,7 +34,7 @@ using nlohmann::json;
 
 Stream LoadOrSimulate(const std::string& input, std::uint64_t seed, bool seed_given,
                       const std::vector<std::string>& scenario_overrides) {
-  if (fs::is_regular_file(input) && IsStreamFile(input)) {
+  if (IsRegularFile(input) && IsStreamFile(input)) {
     if (seed_given || !scenario_overrides.empty())
       throw InputError(input, 0, "--seed and scenario --set do not apply to a recorded stream",
                        "drop them, or give the scenario instead of the stream");

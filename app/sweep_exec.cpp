@@ -19,6 +19,7 @@
 
 #include "app/run.hpp"
 #include "core/atomic_file.hpp"
+#include "core/file_status.hpp"
 
 namespace slambox {
 
@@ -29,7 +30,7 @@ std::string RunDir(const std::string& out_dir, const SweepRun& run) { return out
 
 bool RunComplete(const std::string& out_dir, const SweepRun& run) {
   const std::string dir = RunDir(out_dir, run);
-  return fs::exists(dir + "/metrics.json") || fs::exists(dir + "/failed.json");
+  return PathExists(dir + "/metrics.json") || PathExists(dir + "/failed.json");
 }
 
 namespace {
@@ -172,7 +173,7 @@ ExecSummary ExecuteRuns(const std::vector<SweepRun>& runs, const ExecOptions& o)
       const double seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
       const std::string dir = RunDir(o.out_dir, *r.run);
       ++summary.executed;
-      if (fs::exists(dir + "/metrics.json")) {
+      if (PathExists(dir + "/metrics.json")) {
         report(*r.run, "ok", seconds);
         continue;
       }

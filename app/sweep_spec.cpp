@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/file_status.hpp"
 #include "core/limits.hpp"
 #include "core/stream_io.hpp"
 #include "core/version.hpp"
@@ -171,7 +172,7 @@ SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
       if (std::find(spec.scenarios.begin(), spec.scenarios.end(), entry) == spec.scenarios.end())
         throw InputError(path, Line(kv.first), "relations for '" + entry + "', which is not in 'scenarios'",
                          "use the scenario entry exactly as listed in scenarios:");
-      if (!kv.second.IsScalar() || !std::filesystem::is_regular_file(kv.second.Scalar()))
+      if (!kv.second.IsScalar() || !IsRegularFile(kv.second.Scalar()))
         throw InputError(path, Line(kv.second), "relations file '" + ScalarText(kv.second, path, entry) + "' not found",
                          "give the path of a relations file (relative to the working folder)");
       spec.relations.emplace_back(entry, kv.second.Scalar());
@@ -180,7 +181,7 @@ SweepSpec ParseSweepSpec(const std::string& text, const std::string& path) {
   if (const YAML::Node check = root["check"]) ParseCheckTolerances(check, path, spec);
   // A stream is already simulated: scenario overrides cannot apply to it.
   for (const auto& scenario : spec.scenarios) {
-    if (!std::filesystem::is_regular_file(scenario) || !IsStreamFile(scenario)) continue;
+    if (!IsRegularFile(scenario) || !IsStreamFile(scenario)) continue;
     for (const auto& key : SweptAndSetKeys(spec))
       if (key.rfind("algo.", 0) != 0)
         throw InputError(path, 1, "'" + key + "' is a scenario key and '" + scenario + "' is a stream file",
@@ -222,7 +223,7 @@ std::vector<SweepRun> ExpandSweep(const SweepSpec& spec) {
   for (const auto& [key, values] : spec.grid) points *= values.size();
   std::vector<SweepRun> runs;
   for (const auto& scenario : spec.scenarios) {
-    const bool is_stream = std::filesystem::is_regular_file(scenario) && IsStreamFile(scenario);
+    const bool is_stream = IsRegularFile(scenario) && IsStreamFile(scenario);
     std::string relations;
     for (const auto& [entry, file] : spec.relations)
       if (entry == scenario) relations = file;

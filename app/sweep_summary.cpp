@@ -11,6 +11,7 @@
 #include "core/atomic_file.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/file_status.hpp"
 #include "core/json_io.hpp"
 #include "eval/metrics.hpp"
 #include "eval/statistics.hpp"
@@ -32,13 +33,13 @@ void WriteSweepSummary(const std::string& out_dir, const SweepSpec& spec, const 
   int missing = 0;
   for (const auto& run : runs) {
     const std::string dir = out_dir + "/runs/" + run.id;
-    if (fs::exists(dir + "/metrics.json")) {
+    if (PathExists(dir + "/metrics.json")) {
       const std::string path = dir + "/metrics.json";
       const nlohmann::json doc = ReadJsonFile(path);
       if (!doc.contains("algorithms") || !doc.at("algorithms").is_object())
         throw InputError(path, 0, "no \"algorithms\" object", "re-run the sweep with --resume after deleting the run");
       for (const auto& [algo, m] : doc.at("algorithms").items()) entries.push_back({&run, algo, MetricsFromJson(m, path)});
-    } else if (fs::exists(dir + "/failed.json")) {
+    } else if (PathExists(dir + "/failed.json")) {
       for (const auto& algo : spec.algorithms)
         entries.push_back({&run, algo, UnscoredMetrics(RunStatus::kFailed)});
     } else {

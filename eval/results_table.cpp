@@ -9,6 +9,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/file_status.hpp"
 
 namespace slambox {
 
@@ -63,7 +64,7 @@ std::string ResultsCsv(const ResultsTable& t) {
 ResultsTable ReadResultsCsv(const std::string& path) {
   const std::string fix = "give a results.csv written by `slambox sweep` (or re-run it with --resume)";
   std::ifstream in(path, std::ios::binary);
-  if (!std::filesystem::is_regular_file(path) || !in) throw InputError(path, 0, "no such results file", fix);
+  if (!IsRegularFile(path) || !in) throw InputError(path, 0, "no such results file", fix);
   std::stringstream text;
   text << in.rdbuf();
   const std::vector<CsvRow> rows = ParseCsv(text.str(), path);

@@ -19,6 +19,7 @@
 #include <zlib.h>
 
 #include "core/error.hpp"
+#include "core/file_status.hpp"
 #include "core/limits.hpp"
 #include "slam/mrpt/mrpt_convert.hpp"
 
@@ -173,7 +174,7 @@ LaserLog ParseRawlog(const std::string& bytes, const std::string& path) {
 }
 
 LaserLog ReadRawlog(const std::string& path, std::uint64_t max_bytes) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open the rawlog", "check the path");
+  if (!IsRegularFile(path)) throw InputError(path, 0, "cannot open the rawlog", "check the path");
   return ParseRawlog(ReadRawlogBytes(path, max_bytes), path);
 }
 

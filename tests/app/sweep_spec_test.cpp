@@ -112,6 +112,28 @@ TEST(SweepSpec, ErrorsNameFileLineAndFix) {
   }
 }
 
+// A name longer than the file system allows (found by fuzz_sweep): std::filesystem's
+// throwing queries ended the process with filesystem_error (ENAMETOOLONG); now such a name
+// is "not a file": a scenario name, or a relations file that is reported missing.
+TEST(SweepSpec, NamesLongerThanTheFileSystemAllowsAreNotFilesNotCrashes) {
+  const std::string long_name(1000, 'x');
+  const auto spec = LoadSweepSpec(WriteTemp("long_scenario.yaml", "scenarios: [" + long_name +
+                                                                      "]\nalgorithms: [odometry]\nseeds: 1\n"));
+  ASSERT_EQ(spec.scenarios.size(), 1u);
+  EXPECT_EQ(spec.scenarios[0], long_name);
+  EXPECT_EQ(ExpandSweep(spec).size(), 1u);
+  const auto path = WriteTemp("long_relations.yaml", "scenarios: [loop]\nalgorithms: [odometry]\nseeds: 1\n"
+                                                     "relations: {loop: " + long_name + "}\n");
+  try {
+    LoadSweepSpec(path);
+    ADD_FAILURE() << "accepted a relations file that cannot exist";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path + ":4:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("not found"), std::string::npos) << msg;
+  }
+}
+
 TEST(Csv, QuotesRoundTrip) {
   const CsvRow row = {"plain", "with,comma", "with \"quote\"", "", "[0.1, 0.2]"};
   const auto rows = ParseCsv(CsvLine(row) + CsvLine(row), "x.csv");
