@@ -24,6 +24,9 @@ all=(fuzz_stream fuzz_scenario fuzz_sweep fuzz_pose_graph fuzz_carmen fuzz_victo
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
 command -v clang++-14 >/dev/null || { echo "fuzz: clang++-14 missing; run scripts/setup.sh" >&2; exit 1; }
+# As in build.sh: ccache keys on paths relative to the checkout's parent, so a fresh clone
+# (CI's) reuses what an earlier build of the same sources compiled.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$PWD")}"
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1"
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
