@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/bounded_atan2.hpp"
+#include "core/fast_atan2.hpp"
 #include "sim/ray_caster.hpp"
 
 namespace slambox {
@@ -19,12 +19,12 @@ namespace {
 constexpr double kTwoPi = 2.0 * M_PI;
 /// [rad] added on both sides of a primitive's angular extent: a beam 1e-6 rad outside an end
 /// point misses it by >= 1e-6 x its distance, far beyond the rounding of the hit test; the
-/// end points' angles are BoundedAtan2's, so its error bound comes on top.
-constexpr double kPadRad = 1e-6 + kBoundedAtan2ErrorRad;
+/// end points' angles are FastAtan2's, so its error bound comes on top.
+constexpr double kPadRad = 1e-6 + kFastAtan2ErrorRad;
 
-/// Angle of p seen from o, relative to `first`, in [0, 2 pi), within kBoundedAtan2ErrorRad.
+/// Angle of p seen from o, relative to `first`, in [0, 2 pi), within kFastAtan2ErrorRad.
 double RelativeAngle(const Eigen::Vector2d& o, const Eigen::Vector2d& p, double first) {
-  const double a = BoundedAtan2(p.y() - o.y(), p.x() - o.x()) - first;
+  const double a = FastAtan2(p.y() - o.y(), p.x() - o.x()) - first;
   return a - kTwoPi * std::floor(a / kTwoPi);
 }
 
@@ -111,9 +111,9 @@ void StaticGeometryIndex::CastFan(const Eigen::Vector2d& o, double first, double
       }
       const double pa = RelativeAngle(o, s.a, first), pb = RelativeAngle(o, s.b, first);
       double delta = pb - pa;  // the subtended angle, the short way round (< pi: o is off the segment)
-      // Near pi (o nearly on the segment) the short way is still the right one: BoundedAtan2's
-      // error is the same in opposite directions (BoundedAtan2(-y, -x) is BoundedAtan2(y, x)
-      // -+ pi exactly), so it cancels in delta up to its slope times pi - |delta|.
+      // Near pi (o nearly on the segment) the short way is still the right one: FastAtan2's
+      // error is the same in opposite directions (core/fast_atan2.hpp), so it cancels in delta
+      // up to its slope times pi - |delta|.
       delta -= kTwoPi * std::round(delta / kTwoPi);
       const double start = delta >= 0.0 ? pa : pb;
       test_beams(range, distance, start - kPadRad, start + std::abs(delta) + kPadRad);

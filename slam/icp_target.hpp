@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/fast_atan2.hpp"
 #include "core/stream.hpp"
 #include "slam/scan_points.hpp"
 
@@ -58,18 +59,6 @@ bool NearestByKdTree(const IcpTarget& target, const Eigen::Vector2d& q, int* ind
 /// Unit normal of a 2D point set by PCA: the eigenvector of the smaller eigenvalue of the
 /// scatter matrix (closed form for 2x2). (0, 0) for fewer than 2 distinct points.
 Eigen::Vector2d FitNormal(const Eigen::Vector2d* points, int count);
-
-/// atan2 with |error| <= 1e-5 rad (Abramowitz & Stegun 4.4.49); enough to pick a beam.
-/// Branch-free so that loops over it vectorize.
-inline double FastAtan2(double y, double x) {
-  const double ax = std::abs(x), ay = std::abs(y);
-  const double mx = std::max(ax, ay), mn = std::min(ax, ay);
-  const double a = mn / (mx + 1e-300), a2 = a * a;
-  double r = a * (0.9998660 + a2 * (-0.3302995 + a2 * (0.1801410 + a2 * (-0.0851330 + a2 * 0.0208351))));
-  r = ay > ax ? M_PI_2 - r : r;
-  r = x < 0 ? M_PI - r : r;
-  return y < 0 ? -r : r;
-}
 
 /// The beam whose bearing is nearest to bearing_rad: floor((bearing - angle_min) /
 /// increment + 1/2), wrapped into [0, beams) for a full circle; may lie outside the scan.

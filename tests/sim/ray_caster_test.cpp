@@ -176,7 +176,7 @@ TEST(RayCaster, FanEqualsOneCastPerBeamBitForBit) {
     double theta = ang(rng);
     const double max_range = range(rng);
     // Every 4th fan aims one beam 5e-6 rad inside a wall's end point, seen from o: a beam a
-    // culling interval too narrow for BoundedAtan2's error would drop (sim/ray_fan.cpp).
+    // culling interval too narrow for FastAtan2's error would drop (sim/ray_fan.cpp).
     if (f % 4 == 3 && f % 50 > 5) {
       const Segment& target = geometry.segments[f % geometry.segments.size()];
       const Eigen::Vector2d ta = target.a - o, tb = target.b - o;

@@ -169,15 +169,3 @@ TEST(IcpClosedForm, FitNormalOfALine) {
 
 }  // namespace
 }  // namespace slambox
-
-namespace slambox {
-namespace {
-TEST(IcpTarget, FastAtan2MatchesAtan2AllQuadrants) {
-  for (int k = 0; k < 3600; ++k) {
-    const double a = -M_PI + k * 2 * M_PI / 3600 + 1e-4;
-    for (double r : {0.1, 1.0, 30.0})
-      EXPECT_NEAR(FastAtan2(r * std::sin(a), r * std::cos(a)), std::atan2(std::sin(a), std::cos(a)), 2e-5);
-  }
-}
-}  // namespace
-}  // namespace slambox
