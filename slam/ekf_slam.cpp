@@ -303,7 +303,16 @@ void EkfSlam::ManageExistence(const std::vector<bool>& matched, const std::vecto
       tracks_.erase(tracks_.begin() + j);
       continue;
     }
-    if (!in_view) continue;
+    if (!in_view) {
+      // A miss is evidence only where a detection was expected; a detection is evidence
+      // anywhere (a landmark seen only near range_max would otherwise never be tried).
+      if (matched[j] && !held[j]) {
+        const double p_band = config_.estimate_detection_rate ? DetectionProbability(detection_, zp.x()) : 1.0;
+        t.log_ratio += DetectedLogRatio(p_band, gate_probability_, mu[j]);
+        if (tentative_sprt) t.confirmed = t.confirmed || ReadyToConfirm(t);
+      }
+      continue;
+    }
     // Counts: a miss costs how likely a detection was (before this scan): P_D at this
     // range over the confirmed landmarks, for a confirmed one times its own visibility,
     // its detections over those P_D predicted for it (a tentative one's history is too short).

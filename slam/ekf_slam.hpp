@@ -3,18 +3,18 @@
 // Ch. 10; Bailey et al. 2006). Odometry drives the prediction, each landmark scan is one
 // batched Joseph-form update, unseen landmarks are added through the inverse observation
 // model. Association by known ids, nearest neighbour with two gates, or JCBB. With
-// unknown ids a new landmark is tentative until seen `confirm_sightings` times, deleted if
-// missed `tentative_max_misses` times first or not confirmed within `tentative_max_age_s`
-// (`tentative_existence=counts`, the default). A landmark's existence is also Wald's
-// sequential test (slam/landmark_existence.hpp): every scan that predicts it in range and
-// field of view is a trial of "real, detected with P_D (the rate the run measures at that
-// range, slam/detection_rate.hpp) and then in its gate" against "clutter reappearing in
-// its gate" (mu, the clutter the configured density puts in the gate); a confirmed
-// landmark is removed at Wald's lower bound for the gate's own error probability
-// (`confirmed_existence=sprt`, the default; `counts`: +1 seen, -P_D missed, removed at 0),
-// and with `tentative_existence=sprt` a tentative one is confirmed and deleted at the two
-// bounds. Two landmarks that
-// become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
+// unknown ids a landmark's existence is Wald's sequential test
+// (slam/landmark_existence.hpp): every scan that predicts it in range and field of view
+// is a trial of "real, detected with P_D (the rate the run measures at that range,
+// slam/detection_rate.hpp) and then in its gate" against "clutter reappearing in its
+// gate" (mu, the clutter the configured density puts in the gate). A new landmark is
+// tentative until the test confirms it, deleted at Wald's lower bound or when it is out
+// of view and not confirmed within `tentative_max_age_s` (`tentative_existence=sprt`, the
+// default; `counts`: confirmed after `confirm_sightings`, deleted after
+// `tentative_max_misses` misses in view or at `tentative_max_age_s`); a confirmed landmark
+// is removed at the lower bound (`confirmed_existence=sprt`, the default; `counts`: +1
+// seen, -P_D missed, removed at 0). Bounds: the gate's own error probability. Two
+// landmarks that become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
 // ever seen in one scan (then they are two landmarks, however close). A pairing whose gate
 // may hold clutter (the lone re-observation of an old landmark after drift) is held until
 // repeated scans or other pairings support it (HoldUncertainPairings). Optional FEJ-EKF
@@ -54,7 +54,7 @@ struct EkfSlamConfig {
   double gate_new_chi2 = 25.0;          ///< [chi2, 2 dof] new landmark if every d^2 is above this
   double jcbb_joint_probability = 0.99; ///< [-] JCBB joint compatibility confidence
   int jcbb_max_nodes = 20000;           ///< [nodes] JCBB search budget per scan
-  ExistenceRule tentative_existence = ExistenceRule::kCounts;  ///< unknown ids: confirmation and deletion of tentative landmarks
+  ExistenceRule tentative_existence = ExistenceRule::kSequentialTest;  ///< unknown ids: confirmation and deletion of tentative landmarks
   ExistenceRule confirmed_existence = ExistenceRule::kSequentialTest;  ///< unknown ids: removal of confirmed landmarks
   int confirm_sightings = 3;            ///< [scans] tentative_existence=counts: sightings that confirm a tentative landmark
   int tentative_max_misses = 3;         ///< [scans] tentative_existence=counts: misses in view that delete a tentative landmark
@@ -64,6 +64,7 @@ struct EkfSlamConfig {
   bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until repeated scans make that unlikelier than a gate miss
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
+  bool estimate_clutter_rate = true;    ///< unknown ids: clutter per scan is the larger of the configured one and the tentative landmarks deleted unconfirmed per scan
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
@@ -111,6 +112,8 @@ class EkfSlam : public SlamModule {
   /// Per landmark, the clutter expected in its individual gate (ExpectedFalseInGate).
   std::vector<double> ExpectedClutterInGates() const;
   bool ReadyToConfirm(const LandmarkTrack& t) const;
+  /// estimate_clutter_rate: clutter per scan from the phantoms deleted so far, if above the configured rate.
+  void UpdateClutterRate();
   /// existence=sprt: log prior odds that a new landmark is real (births against clutter_per_scan).
   double NewLandmarkPriorLogRatio() const;
   int MergeDuplicates();
@@ -135,7 +138,10 @@ class EkfSlam : public SlamModule {
   std::map<int, int> merged_into_;  ///< removed key -> key it was merged into
   std::set<std::pair<int, int>> co_observed_;  ///< (smaller, larger) keys seen in one scan
   std::map<int, double> held_log_clutter_;  ///< key -> log P[clutter] of its pairing, held in consecutive scans
-  double clutter_per_scan_ = 0.0;  ///< the sensor's configured Poisson mean of false detections
+  double clutter_per_scan_ = 0.0;  ///< Poisson mean of false detections: configured, or measured if larger (UpdateClutterRate)
+  double configured_clutter_per_scan_ = 0.0;  ///< the sensor's
+  double footprint_m2_ = 1.0;  ///< the sensor's field of view within range_max
+  double phantoms_ = 0;  ///< tentative landmarks deleted unconfirmed (unknown ids)
   double births_ = 0;  ///< detections that started a new landmark (unknown ids)
   int next_key_ = 0;
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)

@@ -131,7 +131,8 @@ TEST(LandmarkExistence, ClutterOnlyStreamConfirmsNothing) {
   for (auto& e : s.events)
     for (int k = count(rng); k > 0; --k)
       std::get<LandmarkEvent>(e).observations.push_back({10.0 * std::sqrt(u(rng)), M_PI * (2 * u(rng) - 1), -1});
-  for (const EkfSlamConfig& config : {EkfSlamConfig{}, kSprt}) {
+  // The default (sequential test, held pairings), the test alone, and the count rule.
+  for (const EkfSlamConfig& config : {EkfSlamConfig{}, kSprt, EkfSlamConfig{.tentative_existence = ExistenceRule::kCounts}}) {
     const Counts c = RunScript(s, config);
     double most = 0, early = 0, late = 0;
     for (double n : c.confirmed) most = std::max(most, n);

@@ -92,13 +92,15 @@ TEST(LandmarkMerge, WrapsTheRobotHeading) {
 // --- scripted detections: a robot standing at the origin, no odometry -------------------
 
 struct Scripted {
-  explicit Scripted(const EkfSlamConfig& config, double sigma_bearing_deg = 1.0) : ekf(config) {
+  explicit Scripted(const EkfSlamConfig& config, double sigma_bearing_deg = 1.0, double clutter_per_scan = 0.0)
+      : ekf(config) {
     StreamHeader header;
     LandmarkSensorConfig sensor;
     sensor.known_ids = false;
     sensor.sigma_range_m = 0.1;
     sensor.sigma_bearing_deg = sigma_bearing_deg;
     sensor.range_max_m = 15.0;
+    sensor.clutter_per_scan = clutter_per_scan;
     header.sensors.landmarks = sensor;
     ekf.Start(header);
   }
@@ -151,8 +153,10 @@ TEST(EkfSlamExistence, TwoTreesCloserThanTheSensorResolvesAreNeverMerged) {
 TEST(EkfSlamExistence, ConfirmedLandmarkIsRemovedWhenItsCountReachesZero) {
   // Seen 3 times (confirmed, existence 3), then missed in view: 2, 1, 0 -> removed (each
   // miss costs 1: the configured P_D, not the estimate, which the next test covers). The
-  // count rule (confirmed_existence=counts; the default sprt: tests/slam/landmark_existence_test.cpp).
-  Scripted s({.confirmed_existence = ExistenceRule::kCounts, .estimate_detection_rate = false});
+  // count rule (tentative_ and confirmed_existence=counts; the default sprt:
+  // tests/slam/landmark_existence_test.cpp).
+  Scripted s({.tentative_existence = ExistenceRule::kCounts, .confirmed_existence = ExistenceRule::kCounts,
+              .estimate_detection_rate = false});
   for (int k = 0; k < 3; ++k) s.Scan({{5.0, 0.0, -1}});
   ASSERT_EQ(s.Confirmed(), 1);
   EXPECT_EQ(s.ekf.tracks()[0].existence, 3);
@@ -163,10 +167,26 @@ TEST(EkfSlamExistence, ConfirmedLandmarkIsRemovedWhenItsCountReachesZero) {
   s.Scan({});
   EXPECT_EQ(s.ekf.tracks().size(), 0u);
   // Out of range it is not expected, so it is not missed.
-  Scripted far({.confirmed_existence = ExistenceRule::kCounts});
+  Scripted far({.tentative_existence = ExistenceRule::kCounts, .confirmed_existence = ExistenceRule::kCounts});
   for (int k = 0; k < 3; ++k) far.Scan({{14.8, 0.0, -1}});
   for (int k = 0; k < 10; ++k) far.Scan({});
   EXPECT_EQ(far.Confirmed(), 1);
+}
+
+TEST(EkfSlamExistence, SeenOnlyNearRangeMaxIsConfirmedBySightings) {
+  // 14.8 m is inside range_max (15) but not visibility_margin_m (0.5) inside it: not
+  // expected in view, so its absence is no miss; its detections are still evidence. With
+  // the sequential test (the default) and no clutter configured, prior log 2 + 50 at the
+  // 2nd sighting confirms (before detections out of view counted, it was never tried and
+  // expired after tentative_max_age_s: a post seen only near range_max on `landmarks`).
+  Scripted s({});
+  s.Scan({{14.8, 0.0, -1}});
+  EXPECT_EQ(s.Confirmed(), 0);
+  s.Scan({{14.8, 0.0, -1}});
+  EXPECT_EQ(s.Confirmed(), 1);
+  for (int k = 0; k < 30; ++k) s.Scan({});  // 3 s > tentative_max_age_s, not expected in view
+  EXPECT_EQ(s.Confirmed(), 1);
+  ASSERT_EQ(s.ekf.tracks().size(), 1u);
 }
 
 TEST(EkfSlamExistence, MissCostsTheMeasuredDetectionRate) {
@@ -175,8 +195,8 @@ TEST(EkfSlamExistence, MissCostsTheMeasuredDetectionRate) {
   // as prior; detected / expected this landmark's sightings and the sum of P_band over its
   // scans in view (each starting at 1 for the scan that created it). Seen in scans 1-3
   // (confirmed at 3): miss 1 costs 1 x 4 / 4; a sighting (P_band 1/2); miss 2 costs
-  // P_band = 2/3 times (4 + 1) / (4.5 + 1). (The count rule, confirmed_existence=counts.)
-  Scripted s({.confirmed_existence = ExistenceRule::kCounts});
+  // P_band = 2/3 times (4 + 1) / (4.5 + 1). (The count rules, tentative_ and confirmed_existence=counts.)
+  Scripted s({.tentative_existence = ExistenceRule::kCounts, .confirmed_existence = ExistenceRule::kCounts});
   for (int k = 0; k < 3; ++k) s.Scan({{5.0, 0.0, -1}});
   EXPECT_DOUBLE_EQ(s.ekf.tracks()[0].existence, 3.0);
   s.Scan({});
@@ -188,7 +208,8 @@ TEST(EkfSlamExistence, MissCostsTheMeasuredDetectionRate) {
   // Seen every other scan (as often as P_band says) it gains +1 - ~1/2 per pair and
   // survives three misses in a row; at a cost of 1 per miss its count would stay at 2 and
   // two misses would remove it.
-  Scripted unit({.confirmed_existence = ExistenceRule::kCounts, .estimate_detection_rate = false});
+  Scripted unit({.tentative_existence = ExistenceRule::kCounts, .confirmed_existence = ExistenceRule::kCounts,
+                 .estimate_detection_rate = false});
   for (Scripted* x : {&s, &unit}) {
     if (x == &unit) {
       for (int k = 0; k < 3; ++k) unit.Scan({{5.0, 0.0, -1}});
@@ -206,7 +227,9 @@ TEST(EkfSlamExistence, MissCostsTheMeasuredDetectionRate) {
 }
 
 TEST(EkfSlamExistence, TentativeLandmarkIsRemovedAfterItsMisses) {
-  Scripted s({});
+  // tentative_existence=counts: tentative_max_misses = 3 (the sequential test's deletion:
+  // tests/slam/landmark_existence_test.cpp, TentativeIsDeletedAtTheThirdMiss).
+  Scripted s({.tentative_existence = ExistenceRule::kCounts});
   s.Scan({{5.0, 0.0, -1}});
   s.Scan({});
   s.Scan({});
@@ -216,20 +239,23 @@ TEST(EkfSlamExistence, TentativeLandmarkIsRemovedAfterItsMisses) {
 }
 
 TEST(EkfSlamExistence, ClutterAloneIsNeverConfirmed) {
-  // 1000 scans of Poisson(1) false detections uniform over the 15 m disc.
-  Scripted s({});
-  std::mt19937_64 rng(3);
-  std::poisson_distribution<int> count(1.0);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  int confirmed_ever = 0;
-  for (int k = 0; k < 1000; ++k) {
-    std::vector<LandmarkObservation> obs;
-    for (int i = count(rng); i > 0; --i) obs.push_back({15.0 * std::sqrt(u(rng)), M_PI * (2 * u(rng) - 1), -1});
-    s.Scan(obs);
-    confirmed_ever = std::max(confirmed_ever, s.Confirmed());
+  // 1000 scans of Poisson(1) false detections uniform over the 15 m disc, declared in the
+  // header (the sequential test, the default, takes its clutter rate from there); both rules.
+  for (const ExistenceRule rule : {ExistenceRule::kSequentialTest, ExistenceRule::kCounts}) {
+    Scripted s({.tentative_existence = rule}, 1.0, 1.0);
+    std::mt19937_64 rng(3);
+    std::poisson_distribution<int> count(1.0);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int confirmed_ever = 0;
+    for (int k = 0; k < 1000; ++k) {
+      std::vector<LandmarkObservation> obs;
+      for (int i = count(rng); i > 0; --i) obs.push_back({15.0 * std::sqrt(u(rng)), M_PI * (2 * u(rng) - 1), -1});
+      s.Scan(obs);
+      confirmed_ever = std::max(confirmed_ever, s.Confirmed());
+    }
+    EXPECT_EQ(confirmed_ever, 0) << NameOf(ExistenceRuleNames(), rule);
+    EXPECT_TRUE(s.ekf.Finish().landmarks.empty()) << NameOf(ExistenceRuleNames(), rule);
   }
-  EXPECT_EQ(confirmed_ever, 0);
-  EXPECT_TRUE(s.ekf.Finish().landmarks.empty());
 }
 
 TEST(EkfSlamExistence, BadSettingsAreInputErrors) {
