@@ -64,7 +64,6 @@ struct EkfSlamConfig {
   bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until repeated scans make that unlikelier than a gate miss
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
-  bool estimate_clutter_rate = true;    ///< unknown ids: clutter per scan is the larger of the configured one and the tentative landmarks deleted unconfirmed per scan
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
@@ -112,8 +111,6 @@ class EkfSlam : public SlamModule {
   /// Per landmark, the clutter expected in its individual gate (ExpectedFalseInGate).
   std::vector<double> ExpectedClutterInGates() const;
   bool ReadyToConfirm(const LandmarkTrack& t) const;
-  /// estimate_clutter_rate: clutter per scan from the phantoms deleted so far, if above the configured rate.
-  void UpdateClutterRate();
   /// existence=sprt: log prior odds that a new landmark is real (births against clutter_per_scan).
   double NewLandmarkPriorLogRatio() const;
   int MergeDuplicates();
@@ -138,10 +135,7 @@ class EkfSlam : public SlamModule {
   std::map<int, int> merged_into_;  ///< removed key -> key it was merged into
   std::set<std::pair<int, int>> co_observed_;  ///< (smaller, larger) keys seen in one scan
   std::map<int, double> held_log_clutter_;  ///< key -> log P[clutter] of its pairing, held in consecutive scans
-  double clutter_per_scan_ = 0.0;  ///< Poisson mean of false detections: configured, or measured if larger (UpdateClutterRate)
-  double configured_clutter_per_scan_ = 0.0;  ///< the sensor's
-  double footprint_m2_ = 1.0;  ///< the sensor's field of view within range_max
-  double phantoms_ = 0;  ///< tentative landmarks deleted unconfirmed (unknown ids)
+  double clutter_per_scan_ = 0.0;  ///< the sensor's configured Poisson mean of false detections
   double births_ = 0;  ///< detections that started a new landmark (unknown ids)
   int next_key_ = 0;
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
