@@ -127,8 +127,9 @@ TEST(MrptGraphSlam, RoomPoseAtEveryScanBetterThanDeadReckoning) {
     EXPECT_EQ(missing, 0u) << "of " << scans << " scans";
     const double rmse = Rmse(PositionErrors(e, s));
     const double dr = DeadReckoningRmse(e, s);
-    std::printf("mrpt-graphslam seed %d: %.4f m (dead reckoning %.3f m), %.0f nodes\n", static_cast<int>(seed), rmse,
-                dr, e.diagnostics.at("graph_nodes").back().second);
+    std::printf("mrpt-graphslam seed %d: %.4f m (dead reckoning %.3f m), %.0f nodes, %.0f loop closures\n",
+                static_cast<int>(seed), rmse, dr, e.diagnostics.at("graph_nodes").back().second,
+                e.diagnostics.count("edges_LC") ? e.diagnostics.at("edges_LC").back().second : 0.0);
     EXPECT_LT(rmse, 0.75 * dr) << "seed " << seed;  // 0.66 and 0.48 of it
     EXPECT_TRUE(NoWorseThanMeasured(rmse, kRoomRmse_m[i])) << "seed " << seed;
     EXPECT_GT(e.diagnostics.at("graph_nodes").back().second, 20.0);
