@@ -54,6 +54,7 @@ void PrintAlgorithms() {
     std::cout << std::left << std::setw(static_cast<int>(name_w) + 2) << m.name
               << std::setw(static_cast<int>(needs_w) + 2) << Needs(m.needs) << m.description;
     if (!m.origin.empty()) std::cout << " (" << m.origin << ")";
+    if (!m.in_all) std::cout << " (named only, not in all)";
     if (!m.unavailable.empty()) std::cout << " [unavailable: " << m.unavailable << "]";
     std::cout << "\n";
   }

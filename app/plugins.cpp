@@ -80,7 +80,8 @@ LoadedPlugin OpenPlugin(const std::string& path) {
 std::string ManifestJson(const LoadedPlugin& plugin, const std::string& file_name) {
   json modules = json::array();
   for (const auto& m : plugin.modules)
-    modules.push_back({{"name", m.name}, {"description", m.description}, {"needs", NeedsJson(m.needs)}});
+    modules.push_back(
+        {{"name", m.name}, {"description", m.description}, {"needs", NeedsJson(m.needs)}, {"in_all", m.in_all}});
   const json doc = {{"slambox_plugin_manifest", 1},
                     {"api_version", SLAMBOX_API_VERSION},
                     {"plugin", plugin.name},
@@ -118,6 +119,7 @@ std::vector<ManifestModule> ReadManifests(const std::string& dir) {
         const json& n = m.at("needs");
         mm.needs = {n.at("odometry").get<bool>(), n.at("lidar").get<bool>(), n.at("landmarks").get<bool>(),
                     n.at("map").get<bool>()};
+        mm.in_all = m.at("in_all").get<bool>();
         mm.plugin_name = doc.at("plugin").get<std::string>();
         mm.plugin_path = (file.parent_path() / doc.at("file").get<std::string>()).string();
         out.push_back(std::move(mm));

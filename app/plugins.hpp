@@ -25,6 +25,7 @@ struct ManifestModule {
   std::string name;
   std::string description;
   SensorNeeds needs;
+  bool in_all = true;  ///< ModuleInfo::in_all
   std::string plugin_name;
   std::string plugin_path;  ///< the .so, next to the manifest
 };

@@ -155,12 +155,13 @@ bool SensorsAllow(const ModuleInfo& module, const SensorSuite& sensors, bool has
 std::vector<ModuleListing> ListModules() {
   const Registry& r = State();
   std::vector<ModuleListing> out;
-  for (const auto& m : r.modules) out.push_back({m.info.name, m.info.description, m.info.needs, m.origin, ""});
+  for (const auto& m : r.modules)
+    out.push_back({m.info.name, m.info.description, m.info.needs, m.origin, "", m.info.in_all});
   auto add = [&](const ManifestModule& s, std::string why) {
     std::error_code ec;
     if (why.empty() && !fs::is_regular_file(s.plugin_path, ec))
       why = "plugin file " + s.plugin_path + " not found (slambox was built or installed without it)";
-    out.push_back({s.name, s.description, s.needs, "plugin " + s.plugin_name, why});
+    out.push_back({s.name, s.description, s.needs, "plugin " + s.plugin_name, why, s.in_all});
   };
   for (const auto& s : r.shipped) add(s, "");
   for (const auto& s : r.failed) add(s, r.unavailable.at(s.name));

@@ -34,6 +34,7 @@ struct ModuleListing {
   SensorNeeds needs;
   std::string origin;       ///< empty for a built-in, else "plugin NAME"
   std::string unavailable;  ///< why it cannot run (its plugin is missing or does not load); empty: it can
+  bool in_all = true;       ///< ModuleInfo::in_all: false, run only when named
 };
 std::vector<ModuleListing> ListModules();
 

@@ -32,8 +32,8 @@ std::vector<std::string> ResolveAlgorithms(const std::vector<std::string>& reque
   std::vector<std::string> names;
   for (const auto& r : requested) {
     if (r == "all") {
-      for (const auto& m : AllModules())
-        if (SensorsAllow(m, sensors, has_map)) names.push_back(m.name);
+      for (const auto& m : AllModules())  // expensive peers (in_all = false) only when named
+        if (m.in_all && SensorsAllow(m, sensors, has_map)) names.push_back(m.name);
       continue;
     }
     const ModuleInfo& m = FindModule(r);

@@ -61,7 +61,8 @@ void WriteManifest(const std::string& dir, const SweepSpec& spec) {
   nlohmann::json modules = nlohmann::json::object();
   for (const auto& name : spec.algorithms) {
     if (name == "all") {
-      for (const auto& m : AllModules()) modules[m.name] = {{"baseline", m.baseline}};
+      for (const auto& m : AllModules())  // what `all` runs: not the named-only peers
+        if (m.in_all) modules[m.name] = {{"baseline", m.baseline}};
     } else {
       const ModuleInfo& m = FindModule(name);  // by its own name (exec:PATH.yaml runs as exec:STEM)
       modules[m.name] = {{"baseline", m.baseline}};

@@ -44,6 +44,10 @@ struct ModuleInfo {
   /// A reference to compare against, not a method being judged (dead reckoning): written
   /// to metrics.json's `modules` and sweep.json, and drawn orange and dashed.
   bool baseline = false;
+  /// Run by `--algo all` (and a sweep's `algorithms: [all]`) when the sensors allow it.
+  /// Expensive peers are run only when named: false keeps them out of `all` (mrpt-graphslam,
+  /// minutes to hours per stream); `slambox algorithms` says "named only, not in all".
+  bool in_all = true;
 };
 
 /// ModuleInfo for a module `Module(const Config&)` whose fields `bind` names.

@@ -13,6 +13,7 @@ PACKAGES=(
   libpng-dev libfreetype-dev fonts-dejavu-core
   zlib1g-dev libbz2-dev  # compressed CARMEN logs (datasets/)
   libmrpt-slam-dev  # MRPT 2.5 peers (slam/mrpt/); pulls in its maps, obs, poses, random dev packages
+  libmrpt-graphslam-dev  # MRPT 2.5's pose-graph SLAM (the mrpt-graphslam peer)
   python3-dev python3-pybind11 python3-numpy python3-pytest  # the Python module (python/) for /usr/bin/python3; numpy also reads evo archives in a test
   mrpt-common  # MRPT's own config_files/ (the peers' real-log settings come from them, slam/mrpt/README.md)
   clang-14 libfuzzer-14-dev  # scripts/fuzz.sh: libFuzzer harnesses of every reader (tests/fuzz/)

@@ -276,6 +276,7 @@ where a metric is null), or with as_array=True a NumPy structured array (NaN whe
           d["needs"] = py::dict(py::arg("odometry") = l.needs.odometry, py::arg("lidar") = l.needs.lidar,
                                 py::arg("landmarks") = l.needs.landmarks, py::arg("map") = l.needs.map);
           d["unavailable"] = l.unavailable.empty() ? py::object(py::none()) : py::object(py::str(l.unavailable));
+          d["in_all"] = l.in_all;  // false: run only when named, not by "all"
           out.append(d);
         }
         return out;

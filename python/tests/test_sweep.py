@@ -76,6 +76,8 @@ def test_a_sweep_file_names_registered_python_modules(tmp_path):
     assert set(a["algorithm"]) == {"py-odometry"} and np.all(a["ate_rmse_m"] > 0) and np.all(np.isnan(a["anees"]))  # no covariance: NaN
     assert (tmp_path / "s" / "sweep.yaml").read_text() == f.read_text()  # what `sweep --merge` reads back
     assert any(m["name"] == "py-odometry" and m["origin"].startswith("Python class") for m in slambox.algorithms())
+    named_only = {m["name"] for m in slambox.algorithms() if not m["in_all"]}  # ModuleInfo::in_all
+    assert "py-odometry" not in named_only and named_only <= {"mrpt-graphslam"}, named_only
 
 
 def test_bad_sweeps_raise_before_any_run(tmp_path):

@@ -4,13 +4,15 @@
 #include "core/laser_log.hpp"
 #include "core/plugin.hpp"
 #include "slam/mrpt/mrpt_ekf_slam.hpp"
+#include "slam/mrpt/mrpt_graphslam.hpp"
 #include "slam/mrpt/mrpt_icp_slam.hpp"
 #include "slam/mrpt/mrpt_rawlog.hpp"
 #include "slam/mrpt/mrpt_rbpf_slam.hpp"
 
 namespace {
 std::vector<slambox::ModuleInfo> MrptModules() {
-  return {slambox::MrptIcpSlamModule(), slambox::MrptEkfSlamModule(), slambox::MrptRbpfSlamModule()};
+  return {slambox::MrptIcpSlamModule(), slambox::MrptEkfSlamModule(), slambox::MrptRbpfSlamModule(),
+          slambox::MrptGraphSlamModule()};
 }
 }  // namespace
 

@@ -1,6 +1,7 @@
 // A module plugin for the tests: `test-odometry` (the built-in dead reckoning under another
-// name) and `test-fault`, which crashes (abort) or hangs on streams with an odd seed, so a
-// sweep shows both kinds of run.
+// name), `test-fault`, which crashes (abort) or hangs on streams with an odd seed, so a
+// sweep shows both kinds of run, and `test-named-only` (dead reckoning again, with
+// ModuleInfo::in_all = false: run only when named, never by `all`).
 #include <chrono>
 #include <cstdlib>
 #include <thread>
@@ -42,8 +43,13 @@ class Fault : public SlamModule {
 std::vector<ModuleInfo> Modules() {
   ModuleInfo odometry = DeadReckoningModule();
   odometry.name = "test-odometry";
-  return {odometry, MakeModuleInfo<Fault, FaultConfig>("test-fault", "crashes or hangs on odd seeds (tests)",
-                                                       {.odometry = true}, &BindParams)};
+  ModuleInfo named_only = DeadReckoningModule();
+  named_only.name = "test-named-only";
+  named_only.in_all = false;
+  return {odometry,
+          MakeModuleInfo<Fault, FaultConfig>("test-fault", "crashes or hangs on odd seeds (tests)", {.odometry = true},
+                                             &BindParams),
+          named_only};
 }
 
 }  // namespace
