@@ -28,6 +28,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 
 #include "core/error.hpp"
+#include "core/file_status.hpp"
 #include "slam/mrpt/mrpt_convert.hpp"
 
 #ifndef SLAMBOX_MRPT_GRAPHSLAM_INI
@@ -69,8 +70,7 @@ void ForEachIniKey(MrptGraphSlamConfig& c, F&& f) {
 }
 
 void RequireIni(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
+  if (!IsRegularFile(path))
     throw InputError(path, 0, "MRPT's graphslam-engine configuration laser_odometry_LC.ini not found",
                      "install Debian's mrpt-common (scripts/setup.sh) and rebuild slambox");
 }
@@ -219,8 +219,13 @@ void MrptGraphSlam::Start(const StreamHeader& header) {
   const std::string text = WriteMrptGraphSlamIni(ini_path_, config_);
   std::string file = (fs::temp_directory_path() / "slambox-mrpt-graphslam-XXXXXX").string();
   const int fd = mkstemp(file.data());
-  if (fd < 0 || write(fd, text.data(), text.size()) != static_cast<ssize_t>(text.size()) || close(fd) != 0)
+  bool written = fd >= 0 && write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  if (fd >= 0) written = close(fd) == 0 && written;
+  if (!written) {
+    std::error_code ignored;
+    if (fd >= 0) fs::remove(file, ignored);  // no partial file left behind
     throw InputError(file, 0, "cannot write the engine's configuration file", "check that the temporary folder is writable");
+  }
   try {
     const MuteStdio mute;
     s.node_registrar = std::make_unique<mrpt::graphslam::deciders::CFixedIntervalsNRD<Graph>>();
