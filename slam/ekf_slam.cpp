@@ -24,6 +24,12 @@ const EnumNames<ExistenceRule>& ExistenceRuleNames() {
   return names;
 }
 
+const EnumNames<HoldEvidence>& HoldEvidenceNames() {
+  static const EnumNames<HoldEvidence> names = {{HoldEvidence::kDistinctLandmarks, "landmarks"},
+                                                {HoldEvidence::kRepeatedScans, "scans"}};
+  return names;
+}
+
 void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("association", c.association, EkfAssociationNames(),
          "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");
@@ -56,6 +62,10 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("hold_uncertain_pairings", c.hold_uncertain_pairings, "-",
          "unknown ids: hold a pairing whose gate (given the scan's other pairings) expects more clutter than the gate's "
          "miss probability, until consecutive scans repeat it enough");
+  b.Bind("hold_evidence", c.hold_evidence, HoldEvidenceNames(),
+         "what lets a held pairing through: landmarks (the product of mu over the distinct landmarks held in "
+         "consecutive scans; a repeat of one landmark is no evidence, an unmapped tree stays in its gate) or scans "
+         "(mu over consecutive scans repeating the pairing: independent only for clutter)");
   b.Bind("estimate_detection_rate", c.estimate_detection_rate, "-",
          "unknown ids: a miss in view costs the detection probability at its range (estimated from the confirmed "
          "landmarks, the sensor's detection_prob as prior) times the landmark's detections over those predicted for "
@@ -225,12 +235,16 @@ std::vector<bool> EkfSlam::HoldUncertainPairings(const std::vector<Eigen::Vector
   // A pairing is only as good as its gate is small. Its gate, conditioned on the scan's
   // other pairings, holds an expected mu clutter detections (ExpectedFalseInGate); a
   // large mu is the lone re-observation of an old landmark after drift (a loop closure
-  // on one detection), which one clutter detection can fake. Clutter is drawn anew every
-  // scan, so a pairing repeated in n consecutive scans is clutter with probability
-  // mu_1 ... mu_n: it is held (not used, its landmark not counted as missed) while that
-  // product is above the gate's own miss probability 1 - P[chi2(2) < accept]. Several
-  // such pairings in one jointly compatible scan pin each other down (small conditional
-  // gates) and pass at once.
+  // on one detection), which one clutter detection can fake. It is held (not used, its
+  // landmark not counted as missed) while the probability of a fake is above the gate's
+  // own miss probability 1 - P[chi2(2) < accept]. Fakes of distinct landmarks are
+  // independent, so pairings of n distinct landmarks held in consecutive scans are all
+  // fakes with probability mu_1 ... mu_n (hold_evidence=landmarks). A repeat of one
+  // pairing is independent only if the fake is clutter (drawn anew every scan): a tree
+  // never mapped that sits in an old landmark's gate repeats too (forest seed 0, README),
+  // so repeats count only with hold_evidence=scans. Several such pairings in one jointly
+  // compatible scan pin each other down (small conditional gates) and pass at once.
+  const bool repeats = config_.hold_evidence == HoldEvidence::kRepeatedScans;
   std::vector<bool> held(tracks_.size(), false);
   std::map<int, double> log_clutter;
   if (known_ids_ || !config_.hold_uncertain_pairings || !(clutter_density_per_m2_ > 0)) return held;
@@ -243,15 +257,20 @@ std::vector<bool> EkfSlam::HoldUncertainPairings(const std::vector<Eigen::Vector
     for (size_t q = 0; q < pairs.size(); ++q) {
       const auto [i, j] = pairs[q];
       const double mu = ExpectedFalseInGate(S[q], z[i].x(), config_.gate_accept_chi2, clutter_density_per_m2_);
-      const auto before = held_log_clutter_.find(tracks_[j].key);
-      const double log_p = std::log(std::min(1.0, mu)) + (before != held_log_clutter_.end() ? before->second : 0.0);
+      const int key = tracks_[j].key;
+      double log_p = std::log(std::min(1.0, mu));
+      for (const auto& [k, log_fake] : held_log_clutter_)
+        if (repeats ? k == key : k != key) log_p += log_fake;
       if (log_p <= log_allowed) continue;
-      log_clutter[tracks_[j].key] = log_p;
+      log_clutter[key] = repeats ? log_p : std::log(std::min(1.0, mu));
       target[i] = Association::kDiscard;
       held[j] = true;
     }
   }
-  held_log_clutter_ = std::move(log_clutter);  // a streak ends with a scan that does not hold it
+  // A streak ends with a scan that does not hold it (landmarks: that holds nothing).
+  if (repeats || log_clutter.empty()) held_log_clutter_ = std::move(log_clutter);
+  else
+    for (const auto& [key, log_fake] : log_clutter) held_log_clutter_[key] = log_fake;
   return held;
 }
 

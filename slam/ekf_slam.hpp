@@ -48,6 +48,14 @@ enum class ExistenceRule { kSequentialTest, kCounts };
 /// sprt, counts.
 const EnumNames<ExistenceRule>& ExistenceRuleNames();
 
+/// Unknown ids, held pairings: what lets a held pairing through. landmarks: held pairings
+/// of distinct landmarks in consecutive scans (a fake of one landmark, clutter or an
+/// unmapped tree in its gate, is independent of a fake of another); scans: the same
+/// pairing repeated in consecutive scans (independent only if the fake is clutter).
+enum class HoldEvidence { kDistinctLandmarks, kRepeatedScans };
+/// landmarks, scans.
+const EnumNames<HoldEvidence>& HoldEvidenceNames();
+
 struct EkfSlamConfig {
   EkfAssociation association = EkfAssociation::kAuto;
   double gate_accept_chi2 = 9.21;       ///< [chi2, 2 dof] accept the nearest landmark below this d^2
@@ -61,7 +69,8 @@ struct EkfSlamConfig {
   double tentative_max_age_s = 2.0;     ///< [s] a tentative landmark not confirmed this long after its creation is deleted (sprt: while out of view)
   double visibility_margin_m = 0.5;     ///< [m] a landmark counts as missed only this far inside range_max
   double merge_probability = 0.99;      ///< [-] merge two landmarks whose difference d^2 is below this chi2 quantile (0 = never)
-  bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until repeated scans make that unlikelier than a gate miss
+  bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until more evidence makes that unlikelier than a gate miss
+  HoldEvidence hold_evidence = HoldEvidence::kDistinctLandmarks;  ///< what that evidence is
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
@@ -134,7 +143,7 @@ class EkfSlam : public SlamModule {
   std::map<int, int> key_of_id_;  ///< true id -> key (known association)
   std::map<int, int> merged_into_;  ///< removed key -> key it was merged into
   std::set<std::pair<int, int>> co_observed_;  ///< (smaller, larger) keys seen in one scan
-  std::map<int, double> held_log_clutter_;  ///< key -> log P[clutter] of its pairing, held in consecutive scans
+  std::map<int, double> held_log_clutter_;  ///< key -> log P[fake] of its pairing, held in consecutive scans
   double clutter_per_scan_ = 0.0;  ///< the sensor's configured Poisson mean of false detections
   double births_ = 0;  ///< detections that started a new landmark (unknown ids)
   int next_key_ = 0;
