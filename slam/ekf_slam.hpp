@@ -17,7 +17,7 @@
 // landmarks that become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
 // ever seen in one scan (then they are two landmarks, however close). A pairing whose gate
 // may hold clutter (the lone re-observation of an old landmark after drift) is held until
-// repeated scans or other pairings support it (HoldUncertainPairings). Optional FEJ-EKF
+// pairings of other landmarks support it (HoldUncertainPairings). Optional FEJ-EKF
 // (Huang, Mourikis & Roumeliotis 2008).
 #include <algorithm>
 #include <map>
