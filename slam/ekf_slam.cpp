@@ -24,12 +24,6 @@ const EnumNames<ExistenceRule>& ExistenceRuleNames() {
   return names;
 }
 
-const EnumNames<HoldEvidence>& HoldEvidenceNames() {
-  static const EnumNames<HoldEvidence> names = {{HoldEvidence::kDistinctLandmarks, "landmarks"},
-                                                {HoldEvidence::kRepeatedScans, "scans"}};
-  return names;
-}
-
 void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("association", c.association, EkfAssociationNames(),
          "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");
@@ -106,7 +100,7 @@ void EkfSlam::Start(const StreamHeader& header) {
   key_of_id_.clear();
   merged_into_.clear();
   co_observed_.clear();
-  held_log_clutter_.clear();
+  held_streak_.clear();
   clutter_per_scan_ = sensor.clutter_per_scan;
   births_ = 0;
   next_key_ = 0;
@@ -160,7 +154,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   if (known_ids_) target = AssociateKnownIds(obs);
   else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
   else target = AssociateJcbb(state_, z, R_, gates).landmark;
-  const std::vector<bool> held = HoldUncertainPairings(z, target);
+  const std::vector<bool> held = HoldPairings(z, target);
   const std::vector<double> mu = ExpectedClutterInGates();  // the gates the pairings were made in
 
   // One batched update with every matched observation, linearized at the current
@@ -231,47 +225,14 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   return keys;
 }
 
-std::vector<bool> EkfSlam::HoldUncertainPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target) {
-  // A pairing is only as good as its gate is small. Its gate, conditioned on the scan's
-  // other pairings, holds an expected mu clutter detections (ExpectedFalseInGate); a
-  // large mu is the lone re-observation of an old landmark after drift (a loop closure
-  // on one detection), which one clutter detection can fake. It is held (not used, its
-  // landmark not counted as missed) while the probability of a fake is above the gate's
-  // own miss probability 1 - P[chi2(2) < accept]. Fakes of distinct landmarks are
-  // independent, so pairings of n distinct landmarks held in consecutive scans are all
-  // fakes with probability mu_1 ... mu_n (hold_evidence=landmarks). A repeat of one
-  // pairing is independent only if the fake is clutter (drawn anew every scan): a tree
-  // never mapped that sits in an old landmark's gate repeats too (forest seed 0, README),
-  // so repeats count only with hold_evidence=scans. Several such pairings in one jointly
-  // compatible scan pin each other down (small conditional gates) and pass at once.
-  const bool repeats = config_.hold_evidence == HoldEvidence::kRepeatedScans;
-  std::vector<bool> held(tracks_.size(), false);
-  std::map<int, double> log_clutter;
-  if (known_ids_ || !config_.hold_uncertain_pairings || !(clutter_density_per_m2_ > 0)) return held;
-  std::vector<std::pair<int, int>> pairs;
-  for (size_t i = 0; i < z.size(); ++i)
-    if (target[i] >= 0) pairs.emplace_back(static_cast<int>(i), target[i]);
-  if (!pairs.empty()) {
-    const auto S = ConditionalInnovationCovariances(JointInnovationOf(state_, z, R_, pairs).S);
-    const double log_allowed = std::log(1.0 - ChiSquareCdf(config_.gate_accept_chi2, 2.0));
-    for (size_t q = 0; q < pairs.size(); ++q) {
-      const auto [i, j] = pairs[q];
-      const double mu = ExpectedFalseInGate(S[q], z[i].x(), config_.gate_accept_chi2, clutter_density_per_m2_);
-      const int key = tracks_[j].key;
-      double log_p = std::log(std::min(1.0, mu));
-      for (const auto& [k, log_fake] : held_log_clutter_)
-        if (repeats ? k == key : k != key) log_p += log_fake;
-      if (log_p <= log_allowed) continue;
-      log_clutter[key] = repeats ? log_p : std::log(std::min(1.0, mu));
-      target[i] = Association::kDiscard;
-      held[j] = true;
-    }
-  }
-  // A streak ends with a scan that does not hold it (landmarks: that holds nothing).
-  if (repeats || log_clutter.empty()) held_log_clutter_ = std::move(log_clutter);
-  else
-    for (const auto& [key, log_fake] : log_clutter) held_log_clutter_[key] = log_fake;
-  return held;
+std::vector<bool> EkfSlam::HoldPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target) {
+  if (known_ids_ || !config_.hold_uncertain_pairings || !(clutter_density_per_m2_ > 0))
+    return std::vector<bool>(tracks_.size(), false);
+  std::vector<int> keys(tracks_.size());
+  for (size_t j = 0; j < tracks_.size(); ++j) keys[j] = tracks_[j].key;
+  return HoldUncertainPairings(state_, z, R_, keys,
+                               {config_.gate_accept_chi2, clutter_density_per_m2_, config_.hold_evidence}, target,
+                               held_streak_);
 }
 
 std::vector<double> EkfSlam::ExpectedClutterInGates() const {
