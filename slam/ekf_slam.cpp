@@ -55,7 +55,7 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
          Range{.min = 0, .max = 1, .max_open = true});
   b.Bind("hold_uncertain_pairings", c.hold_uncertain_pairings, "-",
          "unknown ids: hold a pairing whose gate (given the scan's other pairings) expects more clutter than the gate's "
-         "miss probability, until consecutive scans repeat it enough");
+         "miss probability, until held pairings in consecutive scans (hold_evidence) make a fake unlikelier than that");
   b.Bind("hold_evidence", c.hold_evidence, HoldEvidenceNames(),
          "what lets a held pairing through: landmarks (the product of mu over the distinct landmarks held in "
          "consecutive scans; a repeat of one landmark is no evidence, an unmapped tree stays in its gate) or scans "
