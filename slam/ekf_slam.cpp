@@ -55,7 +55,11 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
          Range{.min = 0, .max = 1, .max_open = true});
   b.Bind("hold_uncertain_pairings", c.hold_uncertain_pairings, "-",
          "unknown ids: hold a pairing whose gate (given the scan's other pairings) expects more clutter than the gate's "
-         "miss probability, until consecutive scans repeat it enough");
+         "miss probability, until held pairings in consecutive scans (hold_evidence) make a fake unlikelier than that");
+  b.Bind("hold_evidence", c.hold_evidence, HoldEvidenceNames(),
+         "what lets a held pairing through: landmarks (the product of mu over the distinct landmarks held in "
+         "consecutive scans; a repeat of one landmark is no evidence, an unmapped tree stays in its gate) or scans "
+         "(mu over consecutive scans repeating the pairing: independent only for clutter)");
   b.Bind("estimate_detection_rate", c.estimate_detection_rate, "-",
          "unknown ids: a miss in view costs the detection probability at its range (estimated from the confirmed "
          "landmarks, the sensor's detection_prob as prior) times the landmark's detections over those predicted for "
@@ -96,7 +100,7 @@ void EkfSlam::Start(const StreamHeader& header) {
   key_of_id_.clear();
   merged_into_.clear();
   co_observed_.clear();
-  held_log_clutter_.clear();
+  held_streak_.clear();
   clutter_per_scan_ = sensor.clutter_per_scan;
   births_ = 0;
   next_key_ = 0;
@@ -150,7 +154,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   if (known_ids_) target = AssociateKnownIds(obs);
   else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
   else target = AssociateJcbb(state_, z, R_, gates).landmark;
-  const std::vector<bool> held = HoldUncertainPairings(z, target);
+  const std::vector<bool> held = HoldPairings(z, target);
   const std::vector<double> mu = ExpectedClutterInGates();  // the gates the pairings were made in
 
   // One batched update with every matched observation, linearized at the current
@@ -221,38 +225,14 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   return keys;
 }
 
-std::vector<bool> EkfSlam::HoldUncertainPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target) {
-  // A pairing is only as good as its gate is small. Its gate, conditioned on the scan's
-  // other pairings, holds an expected mu clutter detections (ExpectedFalseInGate); a
-  // large mu is the lone re-observation of an old landmark after drift (a loop closure
-  // on one detection), which one clutter detection can fake. Clutter is drawn anew every
-  // scan, so a pairing repeated in n consecutive scans is clutter with probability
-  // mu_1 ... mu_n: it is held (not used, its landmark not counted as missed) while that
-  // product is above the gate's own miss probability 1 - P[chi2(2) < accept]. Several
-  // such pairings in one jointly compatible scan pin each other down (small conditional
-  // gates) and pass at once.
-  std::vector<bool> held(tracks_.size(), false);
-  std::map<int, double> log_clutter;
-  if (known_ids_ || !config_.hold_uncertain_pairings || !(clutter_density_per_m2_ > 0)) return held;
-  std::vector<std::pair<int, int>> pairs;
-  for (size_t i = 0; i < z.size(); ++i)
-    if (target[i] >= 0) pairs.emplace_back(static_cast<int>(i), target[i]);
-  if (!pairs.empty()) {
-    const auto S = ConditionalInnovationCovariances(JointInnovationOf(state_, z, R_, pairs).S);
-    const double log_allowed = std::log(1.0 - ChiSquareCdf(config_.gate_accept_chi2, 2.0));
-    for (size_t q = 0; q < pairs.size(); ++q) {
-      const auto [i, j] = pairs[q];
-      const double mu = ExpectedFalseInGate(S[q], z[i].x(), config_.gate_accept_chi2, clutter_density_per_m2_);
-      const auto before = held_log_clutter_.find(tracks_[j].key);
-      const double log_p = std::log(std::min(1.0, mu)) + (before != held_log_clutter_.end() ? before->second : 0.0);
-      if (log_p <= log_allowed) continue;
-      log_clutter[tracks_[j].key] = log_p;
-      target[i] = Association::kDiscard;
-      held[j] = true;
-    }
-  }
-  held_log_clutter_ = std::move(log_clutter);  // a streak ends with a scan that does not hold it
-  return held;
+std::vector<bool> EkfSlam::HoldPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target) {
+  if (known_ids_ || !config_.hold_uncertain_pairings || !(clutter_density_per_m2_ > 0))
+    return std::vector<bool>(tracks_.size(), false);
+  std::vector<int> keys(tracks_.size());
+  for (size_t j = 0; j < tracks_.size(); ++j) keys[j] = tracks_[j].key;
+  return HoldUncertainPairings(state_, z, R_, keys,
+                               {config_.gate_accept_chi2, clutter_density_per_m2_, config_.hold_evidence}, target,
+                               held_streak_);
 }
 
 std::vector<double> EkfSlam::ExpectedClutterInGates() const {

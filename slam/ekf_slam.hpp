@@ -17,7 +17,7 @@
 // landmarks that become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
 // ever seen in one scan (then they are two landmarks, however close). A pairing whose gate
 // may hold clutter (the lone re-observation of an old landmark after drift) is held until
-// repeated scans or other pairings support it (HoldUncertainPairings). Optional FEJ-EKF
+// pairings of other landmarks support it (slam/held_pairings.hpp). Optional FEJ-EKF
 // (Huang, Mourikis & Roumeliotis 2008).
 #include <algorithm>
 #include <map>
@@ -29,6 +29,7 @@
 #include "slam/data_association.hpp"
 #include "slam/detection_rate.hpp"
 #include "slam/ekf_slam_filter.hpp"
+#include "slam/held_pairings.hpp"
 #include "slam/landmark_existence.hpp"
 
 namespace slambox {
@@ -61,7 +62,8 @@ struct EkfSlamConfig {
   double tentative_max_age_s = 2.0;     ///< [s] a tentative landmark not confirmed this long after its creation is deleted (sprt: while out of view)
   double visibility_margin_m = 0.5;     ///< [m] a landmark counts as missed only this far inside range_max
   double merge_probability = 0.99;      ///< [-] merge two landmarks whose difference d^2 is below this chi2 quantile (0 = never)
-  bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until repeated scans make that unlikelier than a gate miss
+  bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until more evidence makes that unlikelier than a gate miss
+  HoldEvidence hold_evidence = HoldEvidence::kDistinctLandmarks;  ///< what that evidence is (slam/held_pairings.hpp)
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
@@ -103,8 +105,8 @@ class EkfSlam : public SlamModule {
 
  private:
   std::vector<int> AssociateKnownIds(const std::vector<LandmarkObservation>& obs) const;
-  /// Discards (holds) the pairings of `target` that may be clutter; returns the held landmarks.
-  std::vector<bool> HoldUncertainPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target);
+  /// Discards (holds) the pairings of `target` that may be fakes (slam/held_pairings.hpp); returns the held landmarks.
+  std::vector<bool> HoldPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target);
   /// `mu`: per landmark the clutter expected in its gate at association time (sprt only).
   void ManageExistence(const std::vector<bool>& matched, const std::vector<bool>& held, const std::vector<double>& mu,
                        double t_s);
@@ -134,7 +136,7 @@ class EkfSlam : public SlamModule {
   std::map<int, int> key_of_id_;  ///< true id -> key (known association)
   std::map<int, int> merged_into_;  ///< removed key -> key it was merged into
   std::set<std::pair<int, int>> co_observed_;  ///< (smaller, larger) keys seen in one scan
-  std::map<int, double> held_log_clutter_;  ///< key -> log P[clutter] of its pairing, held in consecutive scans
+  HeldStreak held_streak_;  ///< pairings held in consecutive scans
   double clutter_per_scan_ = 0.0;  ///< the sensor's configured Poisson mean of false detections
   double births_ = 0;  ///< detections that started a new landmark (unknown ids)
   int next_key_ = 0;

@@ -193,28 +193,32 @@ TEST(EkfSlam, ConsistentOnShortRuns) {
   }
 }
 
-/// A scripted run: one landmark at (5, 3) seen 3 times from the start (confirmed), then a
-/// 10 m out-and-back drive without scans (noise-free odometry, large alpha: the pose
+/// A scripted run: landmarks `marks` seen together 3 times from the start (confirmed), then
+/// a 10 m out-and-back drive without scans (noise-free odometry, large alpha: the pose
 /// covariance grows to ~1 m and ~8 deg while the mean stays exact), then the scans
-/// `rescans` from the start pose again (false: a scan that misses it), each at the time of
-/// an odometry event so the trajectory shows its update.
-Stream HoldStream(double clutter_per_scan, const std::vector<bool>& rescans) {
+/// `rescans` from the start pose again, each the indices into `marks` it sees (empty: a
+/// scan that sees nothing), each at the time of an odometry event so the trajectory shows
+/// its update.
+Stream HoldStream(double clutter_per_scan, const std::vector<std::vector<int>>& rescans,
+                  const std::vector<Eigen::Vector2d>& marks = {{5, 3}}) {
   Stream s;
   s.header.sensors.odometry = OdometryConfig{.rate_hz = 50, .alpha = {0.001, 0.002, 0.05, 0.001}};
   s.header.sensors.landmarks = LandmarkSensorConfig{.rate_hz = 5, .range_max_m = 10, .fov_deg = 360,
                                                     .sigma_range_m = 0.05, .sigma_bearing_deg = 1.0,
                                                     .known_ids = false, .clutter_per_scan = clutter_per_scan};
-  const Eigen::Vector2d m(5, 3);
-  const LandmarkObservation seen{m.norm(), std::atan2(m.y(), m.x()), -1};
+  std::vector<LandmarkObservation> seen;
+  for (const Eigen::Vector2d& m : marks) seen.push_back({m.norm(), std::atan2(m.y(), m.x()), -1});
   double t = 0.0;
-  for (int k = 0; k < 3; ++k) s.events.push_back(LandmarkEvent{t += 0.2, {seen}});
+  for (int k = 0; k < 3; ++k) s.events.push_back(LandmarkEvent{t += 0.2, seen});
   for (int leg = 0; leg < 2; ++leg) {
     for (int k = 0; k < 20; ++k) s.events.push_back(OdometryEvent{t += 0.1, SE2(0.5, 0, 0)});
     s.events.push_back(OdometryEvent{t += 0.1, SE2(0, 0, M_PI - 1e-9)});
   }
-  for (bool see : rescans) {
+  for (const std::vector<int>& scan : rescans) {
     s.events.push_back(OdometryEvent{t += 0.1, SE2(0, 0, 0)});
-    s.events.push_back(LandmarkEvent{t, see ? std::vector<LandmarkObservation>{seen} : std::vector<LandmarkObservation>{}});
+    std::vector<LandmarkObservation> z;
+    for (int m : scan) z.push_back(seen[m]);
+    s.events.push_back(LandmarkEvent{t, z});
   }
   return s;
 }
@@ -232,36 +236,75 @@ std::vector<double> LastTraces(const Estimate& e, size_t n) {
   return v;
 }
 
-TEST(EkfSlam, LoneUncertainPairingIsHeldUntilRepeatedScansSupportIt) {
-  const Estimate e = RunEkf(HoldStream(1.0, {true, true, true, true}));
+TEST(EkfSlam, LonePairingRepeatedInScansNeverClosesTheLoop) {
+  // Pose sigma ~1 m, 8 deg: one fake (clutter, or a tree never mapped) in the gate is
+  // likelier than a gate miss (mu ~ 0.05 > 0.01). A repeat of the one pairing is no
+  // evidence against a tree that stays in the gate: held in every scan, never used.
+  const Estimate e = RunEkf(HoldStream(1.0, {{0}, {0}, {0}, {0}, {0}, {0}}));
   const std::vector<double> held = Series(e, "held_pairings");
-  ASSERT_EQ(held.size(), 7u);  // 3 scans at the start, 4 after the drive
+  ASSERT_EQ(held.size(), 9u);  // 3 scans at the start, 6 after the drive
   for (int k = 0; k < 3; ++k) EXPECT_EQ(held[k], 0.0) << k;  // the robot is certain at the start
-  // Pose sigma ~1 m, 8 deg: one clutter detection in the gate is likelier than a gate
-  // miss (mu ~ 0.05 > 0.01), so the first re-observation is held; mu^2 < 0.01: the second is used.
+  for (int k = 3; k < 9; ++k) EXPECT_EQ(held[k], 1.0) << k;
+  const std::vector<double> trace = LastTraces(e, 6);
+  EXPECT_GT(trace.front(), 1.0);
+  EXPECT_DOUBLE_EQ(trace.back(), trace.front());  // never updated
+  ASSERT_EQ(e.landmarks.size(), 1u);              // held is not missed: the landmark is not removed
+}
+
+TEST(EkfSlam, HeldPairingsOfTwoLandmarksInConsecutiveScansCloseTheLoop) {
+  // Two landmarks, each alone in its scan: the second scan's pairing is a fake only if
+  // both are (mu_1 mu_2 ~ 0.003 < 0.01): used. With hold_evidence=scans only a repeat of
+  // the same pairing counts, and the second landmark's first pairing is held too.
+  const std::vector<Eigen::Vector2d> marks = {{5, 3}, {5, -3}};
+  for (const HoldEvidence evidence : {HoldEvidence::kDistinctLandmarks, HoldEvidence::kRepeatedScans}) {
+    const bool by_landmarks = evidence == HoldEvidence::kDistinctLandmarks;
+    const Estimate e = RunEkf(HoldStream(1.0, {{0}, {1}}, marks), {.hold_evidence = evidence});
+    const std::vector<double> held = Series(e, "held_pairings");
+    ASSERT_EQ(held.size(), 5u);
+    EXPECT_EQ(held[3], 1.0) << by_landmarks;
+    EXPECT_EQ(held[4], by_landmarks ? 0.0 : 1.0) << by_landmarks;
+    const std::vector<double> trace = LastTraces(e, 2);
+    EXPECT_GT(trace[0], 1.0);
+    if (by_landmarks) EXPECT_LT(trace[1], 0.5 * trace[0]);  // used
+    else EXPECT_DOUBLE_EQ(trace[1], trace[0]);
+    ASSERT_EQ(e.landmarks.size(), 2u);
+    EXPECT_NEAR(e.trajectory.back().pose.x, 0.0, 1e-6);
+  }
+}
+
+TEST(EkfSlam, RepeatedScansOptionLetsALonePairingThroughOnItsSecondScan) {
+  // hold_evidence=scans (the rule before): clutter is drawn anew each scan, mu^2 < 0.01.
+  const Estimate e = RunEkf(HoldStream(1.0, {{0}, {0}, {0}, {0}}), {.hold_evidence = HoldEvidence::kRepeatedScans});
+  const std::vector<double> held = Series(e, "held_pairings");
+  ASSERT_EQ(held.size(), 7u);
   EXPECT_EQ(held[3], 1.0);
   EXPECT_EQ(held[4], 0.0);
   EXPECT_EQ(held[5], 0.0);
   const std::vector<double> trace = LastTraces(e, 4);
-  EXPECT_GT(trace[0], 1.0);                 // not used: as uncertain as after the drive
-  EXPECT_LT(trace[1], 0.5 * trace[0]);      // used
-  ASSERT_EQ(e.landmarks.size(), 1u);        // held is not missed: the landmark is not removed
+  EXPECT_GT(trace[0], 1.0);             // not used: as uncertain as after the drive
+  EXPECT_LT(trace[1], 0.5 * trace[0]);  // used
+  ASSERT_EQ(e.landmarks.size(), 1u);
   EXPECT_LT((e.landmarks[0].position - Eigen::Vector2d(5, 3)).norm(), 1e-6);
   EXPECT_NEAR(e.trajectory.back().pose.x, 0.0, 1e-6);
 }
 
 TEST(EkfSlam, HeldStreakEndsWithAScanThatDoesNotHoldIt) {
-  const Estimate e = RunEkf(HoldStream(1.0, {true, false, true}));
-  const std::vector<double> held = Series(e, "held_pairings");
-  ASSERT_EQ(held.size(), 6u);
-  EXPECT_EQ(held[3], 1.0);
-  EXPECT_EQ(held[4], 0.0);  // nothing seen
-  EXPECT_EQ(held[5], 1.0);  // held again from the start, not used
+  for (const HoldEvidence evidence : {HoldEvidence::kDistinctLandmarks, HoldEvidence::kRepeatedScans}) {
+    const Estimate e = RunEkf(HoldStream(1.0, {{0}, {}, {0}}), {.hold_evidence = evidence});
+    const std::vector<double> held = Series(e, "held_pairings");
+    ASSERT_EQ(held.size(), 6u);
+    EXPECT_EQ(held[3], 1.0);
+    EXPECT_EQ(held[4], 0.0);  // nothing seen
+    EXPECT_EQ(held[5], 1.0);  // held again from the start, not used
+  }
+  // Landmarks: a scan that holds nothing ends the streak, so the second landmark is held.
+  const Estimate e = RunEkf(HoldStream(1.0, {{0}, {}, {1}}, {{5, 3}, {5, -3}}));
+  EXPECT_EQ(Series(e, "held_pairings")[5], 1.0);
 }
 
 TEST(EkfSlam, NoClutterOrDisabledHoldsNothing) {
   for (const auto& [clutter, hold] : std::vector<std::pair<double, bool>>{{0.0, true}, {1.0, false}}) {
-    const Estimate e = RunEkf(HoldStream(clutter, {true}), {.hold_uncertain_pairings = hold});
+    const Estimate e = RunEkf(HoldStream(clutter, {{0}}), {.hold_uncertain_pairings = hold});
     for (double h : Series(e, "held_pairings")) EXPECT_EQ(h, 0.0) << clutter;
     const double before = e.trajectory[e.trajectory.size() - 2].covariance.trace();
     EXPECT_LT(e.trajectory.back().covariance.trace(), 0.5 * before) << clutter;  // used at once
