@@ -1,7 +1,9 @@
 #include "slam/graphslam.hpp"
 
 #include "core/odometry_model.hpp"
+#include "core/chi_square.hpp"
 #include "slam/range_bearing.hpp"
+#include "slam/smoother_merges.hpp"
 
 namespace slambox {
 
@@ -15,6 +17,12 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
   b.Bind("max_iterations", c.max_iterations, "-", "Ceres iterations per solve", AtLeast(1));
   b.Bind("compute_covariance", c.compute_covariance, "-", "marginal covariances (selected inversion of the information matrix)");
   b.Bind("huber_scale", c.huber_scale, "sigma", "Huber loss on range-bearing residuals (0 = none)", AtLeast(0));
+  b.Bind("smoother_merges", c.smoother_merges, "-",
+         "unknown ids: at the end, merge duplicate landmarks jointly under the smoother's marginals (gate and threshold "
+         "from merge_probability, density the map's own)");
+  b.Bind("smoother_merges_max_landmarks", c.smoother_merges_max_landmarks, "-",
+         "above this many landmarks after the split, the joint search (cost ~ candidates x landmarks^3) is skipped and "
+         "the front end's association kept", AtLeast(0));
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
 }
 
@@ -30,6 +38,11 @@ void GraphSlam::Start(const StreamHeader& header) {
   keyframe_t_s_ = {0.0};
   samples_.clear();
   solved_landmarks_.clear();
+  merged_into_.clear();
+  footprint_ = {sensor.range_max_m, 0.5 * sensor.fov_deg * M_PI / 180.0};
+  split_ = {};
+  dropped_.clear();
+  scan_keyframe_.clear();
   T_keyframe_robot_ = SE2();
   covariance_since_keyframe_.setZero();
   steps_since_keyframe_ = 0;
@@ -81,7 +94,8 @@ void GraphSlam::AddKeyframe(double t_s) {
 void GraphSlam::OnLandmarks(const LandmarkEvent& event) {
   const std::vector<int> keys = frontend_.ProcessLandmarks(event);
   if (WantKeyframe()) AddKeyframe(event.t_s);
-  else if (steps_since_keyframe_ > 0) {  // between keyframes: the scan is not used
+  scan_keyframe_.push_back(static_cast<int>(graph_.poses.size()) - 1);
+  if (steps_since_keyframe_ > 0) {  // between keyframes: the scan is not used
     ++skipped_scans_;
     return;
   }
@@ -95,28 +109,124 @@ void GraphSlam::OnLandmarks(const LandmarkEvent& event) {
   }
 }
 
-LandmarkGraphSolution GraphSlam::Solve(bool with_covariance) {
+int GraphSlam::GraphKey(int frontend_key) const {
+  int key = frontend_.ResolveKey(frontend_key);
+  for (auto it = merged_into_.find(key); it != merged_into_.end(); it = merged_into_.find(key)) key = it->second;
+  return key;
+}
+
+LandmarkGraphSolution GraphSlam::Solve(bool with_covariance, bool joint_landmarks) {
   // Landmarks: the front end's confirmed ones (tentative and deleted ones are left out,
   // and so are their observations); the guess is the last solution or the EKF's mean.
   graph_.landmarks.clear();
   // Observations of a landmark the front end merged into another now constrain that one.
-  for (RangeBearingConstraint& o : graph_.observations) o.landmark = frontend_.ResolveKey(o.landmark);
+  for (RangeBearingConstraint& o : graph_.observations) o.landmark = GraphKey(o.landmark);
   const auto& tracks = frontend_.tracks();
   for (size_t j = 0; j < tracks.size(); ++j) {
-    if (!tracks[j].confirmed) continue;
+    if (!tracks[j].confirmed || merged_into_.count(tracks[j].key)) continue;
     const auto solved = solved_landmarks_.find(tracks[j].key);
     graph_.landmarks[tracks[j].key] =
         solved != solved_landmarks_.end() ? solved->second : frontend_.state().Landmark(static_cast<int>(j));
   }
+  for (const auto& [key, guess] : split_.guesses) {
+    if (merged_into_.count(key)) continue;
+    const auto solved = solved_landmarks_.find(key);
+    graph_.landmarks[key] = solved != solved_landmarks_.end() ? solved->second : guess;
+  }
   LandmarkGraphSolution s = SolveLandmarkGraph(
-      graph_, {config_.max_iterations, config_.compute_covariance && with_covariance, config_.huber_scale});
+      graph_, {config_.max_iterations, config_.compute_covariance && with_covariance, config_.huber_scale,
+               joint_landmarks});
   solved_landmarks_ = graph_.landmarks;
   return s;
 }
 
+bool GraphSlam::MergesInSmoother() const {
+  const double p = config_.frontend.merge_probability;
+  return !known_ids_ && config_.smoother_merges && config_.compute_covariance && p > 0 && p < 1;
+}
+
+int GraphSlam::MergeInSmoother(LandmarkGraphSolution& s) {
+  if (!MergesInSmoother()) return 0;
+  const double p = config_.frontend.merge_probability;
+  const MergeSearchSettings settings{ChiSquareQuantile(p, 2), 1.0 - p, 0.0};
+  int merges = 0;
+  // Each round merges at least one pair, so this ends within the number of landmarks.
+  for (;; s = Solve(true, true)) {
+    if (!s.covariance_ok || s.landmark_joint_covariance.size() == 0) break;
+    JointLandmarks joint;
+    joint.mean.resize(2 * static_cast<long>(graph_.landmarks.size()));
+    for (const auto& [key, m] : graph_.landmarks) {
+      joint.mean.segment<2>(2 * static_cast<long>(joint.keys.size())) = m;
+      joint.keys.push_back(key);
+    }
+    joint.covariance = s.landmark_joint_covariance;
+    // Landmarks observed at one keyframe are distinct.
+    std::set<std::pair<int, int>> together;
+    for (size_t i = 0; i < graph_.observations.size();) {
+      size_t end = i;
+      while (end < graph_.observations.size() && graph_.observations[end].keyframe == graph_.observations[i].keyframe) ++end;
+      for (size_t u = i; u < end; ++u)
+        for (size_t v = u + 1; v < end; ++v)
+          together.insert(std::minmax(graph_.observations[u].landmark, graph_.observations[v].landmark));
+      i = end;
+    }
+    MergeSearchSettings round = settings;
+    round.density_per_m2 = MapDensity(joint.mean);
+    std::vector<std::pair<int, int>> pairs = FindJointMerges(joint, together, round);
+    if (pairs.empty()) {
+      // Nothing left to decide jointly: the front end's pairings the smoother confirms.
+      std::set<std::pair<int, int>> proposals;
+      for (const auto& [original, segments] : split_.segments)
+        for (const LandmarkSegment& segment : segments) proposals.insert({GraphKey(segment.key), GraphKey(original)});
+      pairs = UnchallengedPairings(joint, together, {proposals.begin(), proposals.end()}, settings.gate_chi2,
+                                   std::max(settings.gate_chi2, config_.frontend.gate_new_chi2));
+    }
+    if (pairs.empty()) break;
+    for (const auto& [keep, remove] : pairs) merged_into_[remove] = keep;
+    merges += static_cast<int>(pairs.size());
+  }
+  return merges;
+}
+
 Estimate GraphSlam::Finish() {
   const Estimate front = frontend_.Finish();
-  const LandmarkGraphSolution s = Solve(true);
+  LandmarkGraphSolution s;
+  int merges = 0;
+  bool skipped = false;
+  if (MergesInSmoother()) {
+    // The front end's association, then every re-observation after leaving view split
+    // off (slam/reobservation_split.hpp) and merged back jointly by the smoother.
+    Solve(false);
+    int first_free_key = 0;
+    for (const auto& track : frontend_.tracks()) first_free_key = std::max(first_free_key, track.key + 1);
+    for (const auto& o : graph_.observations) first_free_key = std::max(first_free_key, o.landmark + 1);
+    const double p = config_.frontend.merge_probability;
+    Eigen::VectorXd means(2 * static_cast<long>(graph_.landmarks.size()));
+    long i = 0;
+    for (const auto& [key, m] : graph_.landmarks) means.segment<2>(2 * i++) = m;
+    const std::vector<RangeBearingConstraint> unsplit = graph_.observations;
+    split_ = SplitAtReobservations(graph_, footprint_, {ChiSquareQuantile(p, 2), 1.0 - p, MapDensity(means)},
+                                   first_free_key);
+    if (graph_.landmarks.size() + split_.guesses.size() > static_cast<size_t>(config_.smoother_merges_max_landmarks)) {
+      // Too large for the joint search: the front end's association stands.
+      graph_.observations = unsplit;
+      split_ = {};
+      skipped = true;
+      s = Solve(true);
+    } else {
+      s = Solve(true, true);
+      merges = MergeInSmoother(s);
+    }
+    // A split-off segment seen at one keyframe and merged with nothing constrains nothing
+    // (its two residuals meet its two unknowns) and is no evidence of a landmark: after
+    // leaving view, one detection is what a fake pairing of the front end looks like.
+    std::map<int, int> count;
+    for (const auto& o : graph_.observations) ++count[o.landmark];
+    for (const auto& [key, guess] : split_.guesses)
+      if (graph_.landmarks.count(key) && count[key] < 2) graph_.landmarks.erase(key), dropped_.insert(key);
+  } else {
+    s = Solve(true);
+  }
   const double t_end = samples_.empty() ? 0.0 : samples_.back().t_s;
   auto& d = estimate_.diagnostics;
   d["solver_iterations"].emplace_back(t_end, s.iterations);
@@ -125,8 +235,15 @@ Estimate GraphSlam::Finish() {
   d["solution_usable"].emplace_back(t_end, s.usable ? 1.0 : 0.0);
   d["num_keyframes"].emplace_back(t_end, static_cast<double>(graph_.poses.size()));
   d["skipped_scans"].emplace_back(t_end, skipped_scans_);
-  // The front end associates: its assignments, named by the same landmark ids as below.
+  d["smoother_merges"].emplace_back(t_end, merges);
+  if (MergesInSmoother()) d["smoother_merges_skipped"].emplace_back(t_end, skipped ? 1.0 : 0.0);
+  // The front end associates (and the smoother merges): named by the same landmark ids as below.
   estimate_.observation_assignments = front.observation_assignments;
+  for (ObservationAssignment& a : estimate_.observation_assignments)
+    if (a.landmark >= 0) {
+      a.landmark = GraphKey(SegmentKey(split_, a.landmark, scan_keyframe_.at(a.scan)));
+      if (dropped_.count(a.landmark)) a.landmark = -1;
+    }
   for (const char* name : {"num_landmarks", "nis", "nis_dof"})
     if (front.diagnostics.count(name)) d[std::string("frontend_") + name] = front.diagnostics.at(name);
 
@@ -142,11 +259,11 @@ Estimate GraphSlam::Finish() {
             : Eigen::Matrix3d::Zero();
     estimate_.trajectory.push_back({sample.t_s, T_k * T_kr, 0.5 * (P + P.transpose()), cov});
   }
-  for (const auto& track : frontend_.tracks()) {
-    const auto it = graph_.landmarks.find(track.key);
-    if (it == graph_.landmarks.end()) continue;
-    const auto c = s.landmark_covariances.find(track.key);
-    estimate_.landmarks.push_back({known_ids_ ? track.id : track.key, it->second,
+  std::map<int, int> id_of_key;  // known ids: the true id names a landmark
+  for (const auto& track : frontend_.tracks()) id_of_key[track.key] = track.id;
+  for (const auto& [key, m] : graph_.landmarks) {
+    const auto c = s.landmark_covariances.find(key);
+    estimate_.landmarks.push_back({known_ids_ ? id_of_key.at(key) : key, m,
                                    c != s.landmark_covariances.end() ? c->second : Eigen::Matrix2d::Zero(),
                                    c != s.landmark_covariances.end()});
   }

@@ -10,11 +10,20 @@
 // Finish (and optionally every K keyframes); marginal covariances come from
 // selected inversion of the information matrix. The trajectory has every odometry event: a non-keyframe is its
 // keyframe's pose composed with the odometry since.
+// With unknown ids (`smoother_merges`, default on) the smoother revises the front end's
+// loop closures in Finish: every re-observation after leaving view whose pairing dead
+// reckoning leaves ambiguous is split off (slam/reobservation_split.hpp), then the
+// segments are merged back jointly under the smoother's marginals, and the front end's
+// pairings the smoother neither rejects nor finds rivalled are kept
+// (slam/smoother_merges.hpp). Above `smoother_merges_max_landmarks` landmarks after the
+// split (Victoria Park: 1611) the search is skipped and the front end's association stands.
+#include <set>
 #include <vector>
 
 #include "core/slam_module.hpp"
 #include "slam/ekf_slam.hpp"
 #include "slam/landmark_graph.hpp"
+#include "slam/reobservation_split.hpp"
 
 namespace slambox {
 
@@ -25,6 +34,8 @@ struct GraphSlamConfig {
   int max_iterations = 50;          ///< [-] Ceres iterations per solve
   bool compute_covariance = true;   ///< marginal covariances of poses and landmarks (slam/sparse_marginals.hpp)
   double huber_scale = 0.0;         ///< [sigma] Huber loss on range-bearing residuals (0 = none)
+  bool smoother_merges = true;      ///< unknown ids: merge duplicate landmarks jointly under the smoother's marginals (slam/smoother_merges.hpp)
+  int smoother_merges_max_landmarks = 300;  ///< [-] above this many landmarks after the split, keep the front end's association (the search costs ~ candidates x landmarks^3)
   EkfSlamConfig frontend;           ///< association and tentative-landmark settings (same names as ekf-slam)
 };
 void BindParams(GraphSlamConfig& c, ParamBinder& b);
@@ -47,7 +58,13 @@ class GraphSlam : public SlamModule {
   };
   bool WantKeyframe() const;
   void AddKeyframe(double t_s);
-  LandmarkGraphSolution Solve(bool with_covariance);
+  LandmarkGraphSolution Solve(bool with_covariance, bool joint_landmarks = false);
+  bool MergesInSmoother() const;
+  /// Merges duplicates jointly (slam/smoother_merges.hpp) and re-solves until none is left
+  /// (`s`: the solution with the joint landmark covariance, then the last); returns the merges.
+  int MergeInSmoother(LandmarkGraphSolution& s);
+  /// The key a front-end key's observations belong to in the graph (front-end and smoother merges).
+  int GraphKey(int frontend_key) const;
 
   GraphSlamConfig config_;
   EkfSlam frontend_;
@@ -57,6 +74,11 @@ class GraphSlam : public SlamModule {
   std::vector<double> keyframe_t_s_;
   std::vector<OdometrySample> samples_;
   std::map<int, Eigen::Vector2d> solved_landmarks_;  ///< from the last periodic solve
+  std::map<int, int> merged_into_;  ///< smoother merges: removed key -> kept key
+  SensorFootprint footprint_;
+  ReobservationSplit split_;         ///< landmarks split where re-observed after leaving view (Finish)
+  std::set<int> dropped_;            ///< split-off segments seen once and merged with nothing: not output
+  std::vector<int> scan_keyframe_;   ///< per landmark scan, the keyframe it was attached to or followed
   // Odometry since the last keyframe: relative pose, its covariance, steps and travel.
   SE2 T_keyframe_robot_;
   Eigen::Matrix3d covariance_since_keyframe_ = Eigen::Matrix3d::Zero();

@@ -111,8 +111,12 @@ LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOp
     requested.emplace_back(offset, 2);
     offset += 2;
   }
-  const DiagonalBlocksOfInverse inverse = InverseDiagonalBlocks(InformationMatrix(problem, blocks), requested);
+  const Eigen::SparseMatrix<double> H = InformationMatrix(problem, blocks);
+  const DiagonalBlocksOfInverse inverse = InverseDiagonalBlocks(H, requested);
   if (!inverse.ok) return solution;
+  if (options.joint_landmark_covariance)
+    solution.landmark_joint_covariance = InverseJointBlock(
+        H, std::vector<std::pair<int, int>>(requested.end() - static_cast<long>(g.landmarks.size()), requested.end()));
   solution.covariance_ok = true;
   size_t b = 0;
   for (size_t i = 1; i < g.poses.size(); ++i) solution.pose_covariances[i] = inverse.blocks[b++];

@@ -42,6 +42,7 @@ struct LandmarkGraphOptions {
   int max_iterations = 50;
   bool compute_covariance = true;
   double huber_scale = 0.0;  ///< Huber loss on whitened range-bearing residuals (0 = none)
+  bool joint_landmark_covariance = false;  ///< also the joint covariance of all landmarks (with compute_covariance)
 };
 
 struct LandmarkGraphSolution {
@@ -54,6 +55,8 @@ struct LandmarkGraphSolution {
   bool covariance_ok = false;
   std::vector<Eigen::Matrix3d> pose_covariances;      ///< keyframe 0: zero (held constant)
   std::map<int, Eigen::Matrix2d> landmark_covariances;
+  /// joint_landmark_covariance: all landmarks' positions stacked in key order (2 rows each)
+  Eigen::MatrixXd landmark_joint_covariance;
 };
 
 LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& graph, const LandmarkGraphOptions& options);

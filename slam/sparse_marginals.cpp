@@ -93,4 +93,23 @@ DiagonalBlocksOfInverse InverseDiagonalBlocks(const Eigen::SparseMatrix<double>&
   return out;
 }
 
+Eigen::MatrixXd InverseJointBlock(const Eigen::SparseMatrix<double>& H, const std::vector<std::pair<int, int>>& blocks) {
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt(H);
+  if (llt.info() != Eigen::Success) return {};
+  std::vector<int> index;
+  for (const auto& [offset, size] : blocks)
+    for (int k = 0; k < size; ++k) index.push_back(offset + k);
+  const int m = static_cast<int>(index.size());
+  Eigen::MatrixXd out(m, m);
+  constexpr int kColumnsPerSolve = 64;  // bounds the dense right-hand side to 64 x rows(H)
+  for (int c0 = 0; c0 < m; c0 += kColumnsPerSolve) {
+    const int width = std::min(kColumnsPerSolve, m - c0);
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(H.rows(), width);
+    for (int c = 0; c < width; ++c) E(index[c0 + c], c) = 1.0;
+    const Eigen::MatrixXd X = llt.solve(E);
+    for (int r = 0; r < m; ++r) out.block(r, c0, 1, width) = X.row(index[r]);
+  }
+  return 0.5 * (out + out.transpose());
+}
+
 }  // namespace slambox

@@ -33,4 +33,10 @@ struct DiagonalBlocksOfInverse {
 DiagonalBlocksOfInverse InverseDiagonalBlocks(const Eigen::SparseMatrix<double>& H,
                                               const std::vector<std::pair<int, int>>& blocks);
 
+/// The joint block of H^-1 over the requested blocks (offset, size), stacked in that
+/// order: column c of H^-1 is the solution of H x = e_c with H's sparse Cholesky factor,
+/// so k requested columns cost k forward and back substitutions (empty if H is not
+/// positive definite).
+Eigen::MatrixXd InverseJointBlock(const Eigen::SparseMatrix<double>& H, const std::vector<std::pair<int, int>>& blocks);
+
 }  // namespace slambox

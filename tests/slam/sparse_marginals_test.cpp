@@ -55,6 +55,29 @@ TEST(SparseMarginals, DiagonalBlocksMatchTheDenseInverse) {
   }
 }
 
+TEST(SparseMarginals, JointBlockMatchesTheDenseInverse) {
+  // Blocks out of order and more than one 64-column chunk (size 2 x 45 blocks = 90 columns).
+  std::mt19937 rng(11);
+  const int blocks = 60, size = 2;
+  const Eigen::SparseMatrix<double> H = RandomInformation(blocks, size, 40, rng);
+  const Eigen::MatrixXd inverse = Eigen::MatrixXd(H).inverse();
+  std::vector<std::pair<int, int>> requested;
+  for (int k = blocks - 1; k >= 15; --k) requested.emplace_back(k * size, size);
+  const Eigen::MatrixXd joint = InverseJointBlock(H, requested);
+  ASSERT_EQ(joint.rows(), 2 * static_cast<long>(requested.size()));
+  for (size_t u = 0; u < requested.size(); ++u)
+    for (size_t v = 0; v < requested.size(); ++v) {
+      const Eigen::MatrixXd expected = inverse.block(requested[u].first, requested[v].first, size, size);
+      EXPECT_LT((joint.block(2 * u, 2 * v, size, size) - expected).norm(), 1e-9 * inverse.norm()) << u << " " << v;
+    }
+  Eigen::SparseMatrix<double> indefinite(2, 2);
+  indefinite.insert(0, 0) = 1;
+  indefinite.insert(1, 0) = 2;
+  indefinite.insert(0, 1) = 2;
+  indefinite.insert(1, 1) = 1;
+  EXPECT_EQ(InverseJointBlock(indefinite, {{0, 2}}).size(), 0);
+}
+
 TEST(SparseMarginals, ScalarClosedForm) {
   // H = [[2, 1], [1, 2]]: H^-1 = [[2, -1], [-1, 2]] / 3.
   Eigen::SparseMatrix<double> H(2, 2);

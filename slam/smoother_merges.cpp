@@ -1,0 +1,215 @@
+#include "slam/smoother_merges.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace slambox {
+
+namespace {
+
+struct Candidate {
+  int a = 0, b = 0;  ///< indices into the involved landmarks (a's key < b's key)
+  double d2 = 0.0;   ///< unconditional d^2 (seed order)
+};
+
+/// One pair's difference under the current (conditioned) Gaussian.
+struct PairDifference {
+  Eigen::Vector2d D;
+  Eigen::Matrix2d C;
+  double d2 = std::numeric_limits<double>::infinity();
+};
+
+PairDifference Difference(const Eigen::VectorXd& x, const Eigen::MatrixXd& P, int a, int b) {
+  PairDifference p;
+  p.D = x.segment<2>(2 * a) - x.segment<2>(2 * b);
+  p.C = P.block<2, 2>(2 * a, 2 * a) + P.block<2, 2>(2 * b, 2 * b) - P.block<2, 2>(2 * a, 2 * b) -
+        P.block<2, 2>(2 * b, 2 * a);
+  p.C = 0.5 * (p.C + p.C.transpose());
+  const Eigen::LLT<Eigen::Matrix2d> llt(p.C);
+  if (llt.info() == Eigen::Success && p.C.determinant() > 0) p.d2 = p.D.dot(llt.solve(p.D));
+  return p;
+}
+
+/// mu: the landmarks other than a expected in the gate of a pair with difference covariance C.
+double ExpectedOthersInGate(const Eigen::Matrix2d& C, const MergeSearchSettings& s) {
+  return s.density_per_m2 * M_PI * s.gate_chi2 * std::sqrt(std::max(0.0, C.determinant()));
+}
+
+/// Conditions (x, P) on m_a = m_b (see the header).
+void Condition(Eigen::VectorXd& x, Eigen::MatrixXd& P, int a, int b, const PairDifference& p) {
+  const Eigen::MatrixXd PHt = P.middleCols<2>(2 * a) - P.middleCols<2>(2 * b);  // m x 2
+  const Eigen::MatrixXd K = PHt * p.C.inverse();
+  x -= K * p.D;
+  P -= K * PHt.transpose();
+  P = 0.5 * (P + P.transpose());
+}
+
+struct Hypothesis {
+  std::vector<int> candidates;  ///< indices into the candidate list, in the order taken
+  double log_all_wrong = 0.0;
+  double joint_d2 = 0.0;
+};
+
+/// Grows a hypothesis from `seed` (see the header).
+Hypothesis Grow(const std::vector<Candidate>& candidates, int seed, Eigen::VectorXd x, Eigen::MatrixXd P,
+                const MergeSearchSettings& s) {
+  Hypothesis h;
+  std::vector<bool> used(x.size() / 2, false);
+  int next = seed;
+  while (next >= 0) {
+    const Candidate& c = candidates[next];
+    const PairDifference p = Difference(x, P, c.a, c.b);
+    h.candidates.push_back(next);
+    h.log_all_wrong += std::log(std::min(1.0, ExpectedOthersInGate(p.C, s)));
+    h.joint_d2 += p.d2;
+    used[c.a] = used[c.b] = true;
+    Condition(x, P, c.a, c.b, p);
+    next = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < candidates.size(); ++k) {
+      if (used[candidates[k].a] || used[candidates[k].b]) continue;
+      const PairDifference q = Difference(x, P, candidates[k].a, candidates[k].b);
+      const double area = q.C.determinant();
+      if (q.d2 < s.gate_chi2 && area < best) best = area, next = static_cast<int>(k);
+    }
+  }
+  return h;
+}
+
+double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+}  // namespace
+
+double MapDensity(const Eigen::VectorXd& mean) {
+  const int n = static_cast<int>(mean.size() / 2);
+  if (n < 3) return 0.0;
+  std::vector<Eigen::Vector2d> p(n);
+  for (int i = 0; i < n; ++i) p[i] = mean.segment<2>(2 * i);
+  std::sort(p.begin(), p.end(), [](const auto& u, const auto& v) { return u.x() < v.x() || (u.x() == v.x() && u.y() < v.y()); });
+  // Andrew's monotone chain: lower then upper hull, counter-clockwise.
+  std::vector<Eigen::Vector2d> hull(2 * n);
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
+    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  for (int i = n - 2, lower = k + 1; i >= 0; --i) {
+    while (k >= lower && Cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  double area = 0.0;  // shoelace; hull[k - 1] == hull[0]
+  for (int i = 0; i + 1 < k; ++i) area += hull[i].x() * hull[i + 1].y() - hull[i + 1].x() * hull[i].y();
+  area = 0.5 * std::abs(area);
+  return area > 0 ? n / area : 0.0;
+}
+
+std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
+                                                 const std::set<std::pair<int, int>>& seen_together,
+                                                 const MergeSearchSettings& s) {
+  const int n = static_cast<int>(L.keys.size());
+  // Candidates: pairs never seen together whose unconditional d^2 is inside the gate.
+  std::vector<std::pair<int, int>> pairs;  // landmark indices, smaller key first
+  std::vector<double> d2s;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      const auto [a, b] = L.keys[i] < L.keys[j] ? std::pair{i, j} : std::pair{j, i};
+      if (seen_together.count({L.keys[a], L.keys[b]})) continue;
+      const double d2 = Difference(L.mean, L.covariance, a, b).d2;
+      if (d2 < s.gate_chi2) pairs.emplace_back(a, b), d2s.push_back(d2);
+    }
+  if (pairs.empty()) return {};
+  // Only the landmarks in some candidate take part: their marginal is the sub-block.
+  std::map<int, int> local;  // landmark index -> involved index
+  for (const auto& [a, b] : pairs) local.emplace(a, 0), local.emplace(b, 0);
+  std::vector<int> involved;
+  for (auto& [index, l] : local) l = static_cast<int>(involved.size()), involved.push_back(index);
+  const int m = static_cast<int>(involved.size());
+  Eigen::VectorXd x(2 * m);
+  Eigen::MatrixXd P(2 * m, 2 * m);
+  for (int r = 0; r < m; ++r) {
+    x.segment<2>(2 * r) = L.mean.segment<2>(2 * involved[r]);
+    for (int c = 0; c < m; ++c) P.block<2, 2>(2 * r, 2 * c) = L.covariance.block<2, 2>(2 * involved[r], 2 * involved[c]);
+  }
+  std::vector<Candidate> candidates;
+  for (size_t k = 0; k < pairs.size(); ++k) candidates.push_back({local[pairs[k].first], local[pairs[k].second], d2s[k]});
+  std::vector<int> order(candidates.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  std::stable_sort(order.begin(), order.end(), [&](int u, int v) { return candidates[u].d2 < candidates[v].d2; });
+
+  const auto to_merges = [&](const std::vector<int>& taken) {
+    std::vector<std::pair<int, int>> merges;
+    for (const int k : taken) merges.emplace_back(L.keys[involved[candidates[k].a]], L.keys[involved[candidates[k].b]]);
+    std::sort(merges.begin(), merges.end());
+    return merges;
+  };
+  // Pairs whose gate alone expects fewer other landmarks than the threshold (a
+  // re-observation the front end split off while certain) merge first, all at once; the
+  // loop closures are decided jointly only among what is left, so pairs that are certain
+  // anyway are no evidence for any hypothesis.
+  const double log_threshold = std::log(s.fake_probability);
+  std::vector<int> confident;
+  std::vector<bool> used(m, false);
+  for (const int k : order) {
+    const Candidate& c = candidates[k];
+    if (used[c.a] || used[c.b]) continue;
+    const PairDifference p = Difference(x, P, c.a, c.b);
+    if (std::log(ExpectedOthersInGate(p.C, s)) >= log_threshold) continue;
+    confident.push_back(k);
+    used[c.a] = used[c.b] = true;
+  }
+  if (!confident.empty()) return to_merges(confident);
+  // Otherwise every candidate seeds a hypothesis; the largest below the threshold wins
+  // (ties: the smaller joint d^2).
+  Hypothesis best;
+  for (const int seed : order) {
+    const Hypothesis h = Grow(candidates, seed, x, P, s);
+    if (h.log_all_wrong >= log_threshold) continue;
+    if (h.candidates.size() > best.candidates.size() ||
+        (h.candidates.size() == best.candidates.size() && h.joint_d2 < best.joint_d2))
+      best = h;
+  }
+  return to_merges(best.candidates);
+}
+
+std::vector<std::pair<int, int>> UnchallengedPairings(const JointLandmarks& L,
+                                                      const std::set<std::pair<int, int>>& seen_together,
+                                                      const std::vector<std::pair<int, int>>& proposals,
+                                                      double gate_chi2, double keep_chi2) {
+  const int n = static_cast<int>(L.keys.size());
+  std::map<int, int> index;
+  for (int i = 0; i < n; ++i) index[L.keys[i]] = i;
+  const auto apart = [&](int i, int j) { return !seen_together.count(std::minmax(L.keys[i], L.keys[j])); };
+  // Landmarks (other than `except`) in i's gate.
+  const auto rivals = [&](int i, int except) {
+    for (int j = 0; j < n; ++j)
+      if (j != i && j != except && apart(i, j) && Difference(L.mean, L.covariance, i, j).d2 < gate_chi2) return true;
+    return false;
+  };
+  std::vector<std::pair<double, std::pair<int, int>>> accepted;  // d^2, (i, j)
+  for (const auto& [segment, paired] : proposals) {
+    const auto a = index.find(segment), b = index.find(paired);
+    if (a == index.end() || b == index.end() || a->second == b->second || !apart(a->second, b->second)) continue;
+    const double d2 = Difference(L.mean, L.covariance, a->second, b->second).d2;
+    if (d2 < keep_chi2 && !rivals(a->second, b->second) && !rivals(b->second, a->second))
+      accepted.push_back({d2, {a->second, b->second}});
+  }
+  std::sort(accepted.begin(), accepted.end());
+  std::vector<bool> used(n, false);
+  std::vector<std::pair<int, int>> merges;
+  for (const auto& [d2, ij] : accepted) {
+    const auto [i, j] = ij;
+    if (used[i] || used[j]) continue;
+    used[i] = used[j] = true;
+    merges.push_back(std::minmax(L.keys[i], L.keys[j]));
+  }
+  std::sort(merges.begin(), merges.end());
+  return merges;
+}
+
+}  // namespace slambox
