@@ -151,7 +151,7 @@ int GraphSlam::MergeInSmoother(LandmarkGraphSolution& s) {
   const MergeSearchSettings settings{ChiSquareQuantile(p, 2), 1.0 - p, 0.0};
   int merges = 0;
   // Each round merges at least one pair, so this ends within the number of landmarks.
-  for (;; s = Solve(true, true)) {
+  for (;; s = Solve(false, true)) {
     if (!s.covariance_ok || s.landmark_joint_covariance.size() == 0) break;
     JointLandmarks joint;
     joint.mean.resize(2 * static_cast<long>(graph_.landmarks.size()));
@@ -214,8 +214,9 @@ Estimate GraphSlam::Finish() {
       skipped = true;
       s = Solve(true);
     } else {
-      s = Solve(true, true);
+      s = Solve(false, true);
       merges = MergeInSmoother(s);
+      s = Solve(true);  // the marginals of the final graph (the rounds computed the joint landmark block only)
     }
     // A split-off segment seen at one keyframe and merged with nothing constrains nothing
     // (its two residuals meet its two unknowns) and is no evidence of a landmark: after

@@ -61,7 +61,7 @@ class GraphSlam : public SlamModule {
   LandmarkGraphSolution Solve(bool with_covariance, bool joint_landmarks = false);
   bool MergesInSmoother() const;
   /// Merges duplicates jointly (slam/smoother_merges.hpp) and re-solves until none is left
-  /// (`s`: the solution with the joint landmark covariance, then the last); returns the merges.
+  /// (`s`: a solution with the joint landmark covariance, then the last); returns the merges.
   int MergeInSmoother(LandmarkGraphSolution& s);
   /// The key a front-end key's observations belong to in the graph (front-end and smoother merges).
   int GraphKey(int frontend_key) const;

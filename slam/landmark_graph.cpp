@@ -97,7 +97,7 @@ LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOp
   for (size_t i = 0; i < g.poses.size(); ++i) g.poses[i] = SE2(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
 
   solution.pose_covariances.assign(g.poses.size(), Eigen::Matrix3d::Zero());
-  if (!options.compute_covariance || !solution.usable) return solution;
+  if (!(options.compute_covariance || options.joint_landmark_covariance) || !solution.usable) return solution;
   // Marginals: selected inversion of the information matrix (slam/sparse_marginals.hpp).
   std::vector<double*> blocks;
   std::vector<std::pair<int, int>> requested;
@@ -106,21 +106,25 @@ LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOp
     blocks.push_back(&x[3 * i]);
     requested.emplace_back(offset, 3);
   }
+  const int first_landmark = offset;
   for (auto& [key, m] : g.landmarks) {
     blocks.push_back(m.data());
     requested.emplace_back(offset, 2);
     offset += 2;
   }
   const Eigen::SparseMatrix<double> H = InformationMatrix(problem, blocks);
-  const DiagonalBlocksOfInverse inverse = InverseDiagonalBlocks(H, requested);
-  if (!inverse.ok) return solution;
-  if (options.joint_landmark_covariance)
-    solution.landmark_joint_covariance = InverseJointBlock(
-        H, std::vector<std::pair<int, int>>(requested.end() - static_cast<long>(g.landmarks.size()), requested.end()));
+  if (options.joint_landmark_covariance) {
+    solution.landmark_joint_covariance = InverseTrailingBlock(H, first_landmark);
+    if (solution.landmark_joint_covariance.size() == 0) return solution;
+  }
+  if (options.compute_covariance) {
+    const DiagonalBlocksOfInverse inverse = InverseDiagonalBlocks(H, requested);
+    if (!inverse.ok) return solution;
+    size_t b = 0;
+    for (size_t i = 1; i < g.poses.size(); ++i) solution.pose_covariances[i] = inverse.blocks[b++];
+    for (const auto& [key, m] : g.landmarks) solution.landmark_covariances[key] = inverse.blocks[b++];
+  }
   solution.covariance_ok = true;
-  size_t b = 0;
-  for (size_t i = 1; i < g.poses.size(); ++i) solution.pose_covariances[i] = inverse.blocks[b++];
-  for (const auto& [key, m] : g.landmarks) solution.landmark_covariances[key] = inverse.blocks[b++];
   return solution;
 }
 

@@ -40,9 +40,9 @@ struct LandmarkGraph {
 
 struct LandmarkGraphOptions {
   int max_iterations = 50;
-  bool compute_covariance = true;
+  bool compute_covariance = true;  ///< every pose's and landmark's marginal covariance
   double huber_scale = 0.0;  ///< Huber loss on whitened range-bearing residuals (0 = none)
-  bool joint_landmark_covariance = false;  ///< also the joint covariance of all landmarks (with compute_covariance)
+  bool joint_landmark_covariance = false;  ///< the joint covariance of all landmarks (independent of compute_covariance)
 };
 
 struct LandmarkGraphSolution {

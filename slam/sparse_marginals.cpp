@@ -2,6 +2,7 @@
 
 #include <ceres/crs_matrix.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 
@@ -93,23 +94,27 @@ DiagonalBlocksOfInverse InverseDiagonalBlocks(const Eigen::SparseMatrix<double>&
   return out;
 }
 
-Eigen::MatrixXd InverseJointBlock(const Eigen::SparseMatrix<double>& H, const std::vector<std::pair<int, int>>& blocks) {
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt(H);
-  if (llt.info() != Eigen::Success) return {};
-  std::vector<int> index;
-  for (const auto& [offset, size] : blocks)
-    for (int k = 0; k < size; ++k) index.push_back(offset + k);
-  const int m = static_cast<int>(index.size());
-  Eigen::MatrixXd out(m, m);
-  constexpr int kColumnsPerSolve = 64;  // bounds the dense right-hand side to 64 x rows(H)
-  for (int c0 = 0; c0 < m; c0 += kColumnsPerSolve) {
-    const int width = std::min(kColumnsPerSolve, m - c0);
-    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(H.rows(), width);
-    for (int c = 0; c < width; ++c) E(index[c0 + c], c) = 1.0;
-    const Eigen::MatrixXd X = llt.solve(E);
-    for (int r = 0; r < m; ++r) out.block(r, c0, 1, width) = X.row(index[r]);
+Eigen::MatrixXd InverseTrailingBlock(const Eigen::SparseMatrix<double>& H, int first) {
+  const int n = static_cast<int>(H.rows()), m = n - first;
+  if (m <= 0 || first < 0) return {};
+  Eigen::MatrixXd S = Eigen::MatrixXd(H.bottomRightCorner(m, m));
+  if (first > 0) {
+    const Eigen::SparseMatrix<double> Haa = H.topLeftCorner(first, first);
+    const Eigen::SparseMatrix<double> Hab = H.topRightCorner(first, m);
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt(Haa);
+    if (llt.info() != Eigen::Success) return {};
+    constexpr int kColumnsPerSolve = 64;  // bounds the dense right-hand side to 64 x first
+    for (int c0 = 0; c0 < m; c0 += kColumnsPerSolve) {
+      const int width = std::min(kColumnsPerSolve, m - c0);
+      const Eigen::MatrixXd Y = llt.solve(Eigen::MatrixXd(Hab.middleCols(c0, width)));  // H_aa^-1 H_ab
+      S.middleCols(c0, width) -= Hab.transpose() * Y;
+    }
   }
-  return 0.5 * (out + out.transpose());
+  S = 0.5 * (S + S.transpose());
+  const Eigen::LLT<Eigen::MatrixXd> schur(S);
+  if (schur.info() != Eigen::Success) return {};
+  const Eigen::MatrixXd inverse = schur.solve(Eigen::MatrixXd::Identity(m, m));
+  return 0.5 * (inverse + inverse.transpose());
 }
 
 }  // namespace slambox

@@ -33,10 +33,12 @@ struct DiagonalBlocksOfInverse {
 DiagonalBlocksOfInverse InverseDiagonalBlocks(const Eigen::SparseMatrix<double>& H,
                                               const std::vector<std::pair<int, int>>& blocks);
 
-/// The joint block of H^-1 over the requested blocks (offset, size), stacked in that
-/// order: column c of H^-1 is the solution of H x = e_c with H's sparse Cholesky factor,
-/// so k requested columns cost k forward and back substitutions (empty if H is not
-/// positive definite).
-Eigen::MatrixXd InverseJointBlock(const Eigen::SparseMatrix<double>& H, const std::vector<std::pair<int, int>>& blocks);
+/// The joint block of H^-1 over its trailing rows and columns [first, n) (a landmark
+/// graph's landmarks, after the poses): the inverse of the Schur complement
+/// S = H_bb - H_ba H_aa^-1 H_ab. Only H_aa is factored (sparse Cholesky); for a landmark
+/// graph it is the odometry chain's block-tridiagonal information, whose factor has no fill
+/// whatever loop closures the landmarks make, so the cost is (n - first) substitutions
+/// along the chain and one dense Cholesky of S. Empty if H is not positive definite.
+Eigen::MatrixXd InverseTrailingBlock(const Eigen::SparseMatrix<double>& H, int first);
 
 }  // namespace slambox

@@ -55,27 +55,26 @@ TEST(SparseMarginals, DiagonalBlocksMatchTheDenseInverse) {
   }
 }
 
-TEST(SparseMarginals, JointBlockMatchesTheDenseInverse) {
-  // Blocks out of order and more than one 64-column chunk (size 2 x 45 blocks = 90 columns).
+TEST(SparseMarginals, TrailingBlockMatchesTheDenseInverse) {
+  // The last 45 of 60 blocks of size 2: 90 columns, more than one 64-column chunk.
   std::mt19937 rng(11);
-  const int blocks = 60, size = 2;
-  const Eigen::SparseMatrix<double> H = RandomInformation(blocks, size, 40, rng);
-  const Eigen::MatrixXd inverse = Eigen::MatrixXd(H).inverse();
-  std::vector<std::pair<int, int>> requested;
-  for (int k = blocks - 1; k >= 15; --k) requested.emplace_back(k * size, size);
-  const Eigen::MatrixXd joint = InverseJointBlock(H, requested);
-  ASSERT_EQ(joint.rows(), 2 * static_cast<long>(requested.size()));
-  for (size_t u = 0; u < requested.size(); ++u)
-    for (size_t v = 0; v < requested.size(); ++v) {
-      const Eigen::MatrixXd expected = inverse.block(requested[u].first, requested[v].first, size, size);
-      EXPECT_LT((joint.block(2 * u, 2 * v, size, size) - expected).norm(), 1e-9 * inverse.norm()) << u << " " << v;
-    }
+  const int blocks = 60, size = 2, first = 15 * size;
+  for (const int couplings : {0, 40, 200}) {
+    const Eigen::SparseMatrix<double> H = RandomInformation(blocks, size, couplings, rng);
+    const Eigen::MatrixXd inverse = Eigen::MatrixXd(H).inverse();
+    const Eigen::MatrixXd expected = inverse.bottomRightCorner(H.rows() - first, H.cols() - first);
+    const Eigen::MatrixXd joint = InverseTrailingBlock(H, first);
+    ASSERT_EQ(joint.rows(), expected.rows());
+    EXPECT_LT((joint - expected).norm(), 1e-9 * expected.norm()) << couplings;
+    EXPECT_LT((InverseTrailingBlock(H, 0) - inverse).norm(), 1e-9 * inverse.norm()) << couplings;  // all of it
+  }
   Eigen::SparseMatrix<double> indefinite(2, 2);
   indefinite.insert(0, 0) = 1;
   indefinite.insert(1, 0) = 2;
   indefinite.insert(0, 1) = 2;
-  indefinite.insert(1, 1) = 1;
-  EXPECT_EQ(InverseJointBlock(indefinite, {{0, 2}}).size(), 0);
+  indefinite.insert(1, 1) = 1;  // eigenvalues 3 and -1
+  EXPECT_EQ(InverseTrailingBlock(indefinite, 1).size(), 0);
+  EXPECT_EQ(InverseTrailingBlock(indefinite, 0).size(), 0);
 }
 
 TEST(SparseMarginals, ScalarClosedForm) {
