@@ -140,25 +140,35 @@ LandmarkGraphSolution GraphSlam::Solve(bool with_covariance, bool joint_landmark
   return s;
 }
 
+namespace {
+/// The graph's landmarks stacked in key order (no covariance).
+JointLandmarks Stacked(const std::map<int, Eigen::Vector2d>& landmarks) {
+  JointLandmarks joint;
+  joint.mean.resize(2 * static_cast<long>(landmarks.size()));
+  for (const auto& [key, m] : landmarks) {
+    joint.mean.segment<2>(2 * static_cast<long>(joint.keys.size())) = m;
+    joint.keys.push_back(key);
+  }
+  return joint;
+}
+}  // namespace
+
+MergeSearchSettings GraphSlam::AmbiguityTest() const {
+  const double p = config_.frontend.merge_probability;
+  return {ChiSquareQuantile(p, 2), 1.0 - p, MapDensity(Stacked(graph_.landmarks).mean)};
+}
+
 bool GraphSlam::MergesInSmoother() const {
   const double p = config_.frontend.merge_probability;
   return !known_ids_ && config_.smoother_merges && config_.compute_covariance && p > 0 && p < 1;
 }
 
 int GraphSlam::MergeInSmoother(LandmarkGraphSolution& s) {
-  if (!MergesInSmoother()) return 0;
-  const double p = config_.frontend.merge_probability;
-  const MergeSearchSettings settings{ChiSquareQuantile(p, 2), 1.0 - p, 0.0};
   int merges = 0;
   // Each round merges at least one pair, so this ends within the number of landmarks.
   for (;; s = Solve(false, true)) {
     if (!s.covariance_ok || s.landmark_joint_covariance.size() == 0) break;
-    JointLandmarks joint;
-    joint.mean.resize(2 * static_cast<long>(graph_.landmarks.size()));
-    for (const auto& [key, m] : graph_.landmarks) {
-      joint.mean.segment<2>(2 * static_cast<long>(joint.keys.size())) = m;
-      joint.keys.push_back(key);
-    }
+    JointLandmarks joint = Stacked(graph_.landmarks);
     joint.covariance = s.landmark_joint_covariance;
     // Landmarks observed at one keyframe are distinct.
     std::set<std::pair<int, int>> together;
@@ -170,16 +180,15 @@ int GraphSlam::MergeInSmoother(LandmarkGraphSolution& s) {
           together.insert(std::minmax(graph_.observations[u].landmark, graph_.observations[v].landmark));
       i = end;
     }
-    MergeSearchSettings round = settings;
-    round.density_per_m2 = MapDensity(joint.mean);
+    const MergeSearchSettings round = AmbiguityTest();
     std::vector<std::pair<int, int>> pairs = FindJointMerges(joint, together, round);
     if (pairs.empty()) {
       // Nothing left to decide jointly: the front end's pairings the smoother confirms.
       std::set<std::pair<int, int>> proposals;
       for (const auto& [original, segments] : split_.segments)
         for (const LandmarkSegment& segment : segments) proposals.insert({GraphKey(segment.key), GraphKey(original)});
-      pairs = UnchallengedPairings(joint, together, {proposals.begin(), proposals.end()}, settings.gate_chi2,
-                                   std::max(settings.gate_chi2, config_.frontend.gate_new_chi2));
+      pairs = UnchallengedPairings(joint, together, {proposals.begin(), proposals.end()}, round.gate_chi2,
+                                   std::max(round.gate_chi2, config_.frontend.gate_new_chi2));
     }
     if (pairs.empty()) break;
     for (const auto& [keep, remove] : pairs) merged_into_[remove] = keep;
@@ -200,13 +209,8 @@ Estimate GraphSlam::Finish() {
     int first_free_key = 0;
     for (const auto& track : frontend_.tracks()) first_free_key = std::max(first_free_key, track.key + 1);
     for (const auto& o : graph_.observations) first_free_key = std::max(first_free_key, o.landmark + 1);
-    const double p = config_.frontend.merge_probability;
-    Eigen::VectorXd means(2 * static_cast<long>(graph_.landmarks.size()));
-    long i = 0;
-    for (const auto& [key, m] : graph_.landmarks) means.segment<2>(2 * i++) = m;
     const std::vector<RangeBearingConstraint> unsplit = graph_.observations;
-    split_ = SplitAtReobservations(graph_, footprint_, {ChiSquareQuantile(p, 2), 1.0 - p, MapDensity(means)},
-                                   first_free_key);
+    split_ = SplitAtReobservations(graph_, footprint_, AmbiguityTest(), first_free_key);
     if (graph_.landmarks.size() + split_.guesses.size() > static_cast<size_t>(config_.smoother_merges_max_landmarks)) {
       // Too large for the joint search: the front end's association stands.
       graph_.observations = unsplit;

@@ -60,6 +60,8 @@ class GraphSlam : public SlamModule {
   void AddKeyframe(double t_s);
   LandmarkGraphSolution Solve(bool with_covariance, bool joint_landmarks = false);
   bool MergesInSmoother() const;
+  /// Gate and threshold from merge_probability, density of the graph's current landmarks.
+  MergeSearchSettings AmbiguityTest() const;
   /// Merges duplicates jointly (slam/smoother_merges.hpp) and re-solves until none is left
   /// (`s`: a solution with the joint landmark covariance, then the last); returns the merges.
   int MergeInSmoother(LandmarkGraphSolution& s);

@@ -11,6 +11,19 @@
 
 namespace slambox {
 
+/// The difference of two points stacked in a Gaussian (x, P) at rows ia and ib: D, its
+/// covariance C and d^2 = D^T C^-1 D (infinity if C is not positive definite).
+struct PointDifference {
+  Eigen::Vector2d D = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d C = Eigen::Matrix2d::Zero();
+  double d2 = 0.0;
+};
+PointDifference DifferenceOf(const Eigen::VectorXd& x, const Eigen::MatrixXd& P, Eigen::Index ia, Eigen::Index ib);
+
+/// Conditions (x, P) on m_a = m_b, the points at rows ia and ib (see above). Returns false,
+/// leaving them unchanged, if C is not positive definite.
+bool ConditionOnEqual(Eigen::VectorXd& x, Eigen::MatrixXd& P, Eigen::Index ia, Eigen::Index ib);
+
 /// d^2 = D^T C^-1 D of landmarks a and b (infinity if C is not positive definite).
 double LandmarkDifferenceChi2(const EkfSlamState& state, int a, int b);
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "slam/data_association.hpp"
 #include "slam/range_bearing.hpp"
 
 namespace slambox {
@@ -18,7 +19,7 @@ bool InView(const SE2& pose, const Eigen::Vector2d& m, const SensorFootprint& f)
 }  // namespace
 
 double ReobservationAmbiguity(const LandmarkGraph& g, int k1, int k2, const Eigen::Vector2d& m,
-                              const Eigen::Vector2d& z, const SplitTest& test) {
+                              const Eigen::Vector2d& z, const MergeSearchSettings& test) {
   SE2 T;  // k1 -> k2 by odometry, covariance over (x, y, theta)
   Eigen::Matrix3d Sigma = Eigen::Matrix3d::Zero();
   for (int k = k1; k < k2; ++k) {
@@ -33,10 +34,10 @@ double ReobservationAmbiguity(const LandmarkGraph& g, int k1, int k2, const Eige
   Eigen::Matrix2d G;  // d/d(r, b) of (r cos b, r sin b)
   G << std::cos(z.y()), -z.x() * std::sin(z.y()), std::sin(z.y()), z.x() * std::cos(z.y());
   const Eigen::Matrix2d C = J * Sigma * J.transpose() + 2.0 * G * g.observation_covariance * G.transpose();
-  return test.density_per_m2 * M_PI * test.gate_chi2 * std::sqrt(std::max(0.0, C.determinant()));
+  return ExpectedInGate(C, test.gate_chi2, test.density_per_m2);
 }
 
-ReobservationSplit SplitAtReobservations(LandmarkGraph& graph, const SensorFootprint& footprint, const SplitTest& test,
+ReobservationSplit SplitAtReobservations(LandmarkGraph& graph, const SensorFootprint& footprint, const MergeSearchSettings& test,
                                          int first_free_key) {
   ReobservationSplit split;
   std::map<int, int> last_keyframe;  // landmark key (original) -> keyframe of its last observation

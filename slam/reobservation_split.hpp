@@ -24,18 +24,13 @@
 #include <vector>
 
 #include "slam/landmark_graph.hpp"
+#include "slam/smoother_merges.hpp"
 
 namespace slambox {
 
 struct SensorFootprint {
   double range_max_m = 0.0;
   double half_fov_rad = M_PI;
-};
-
-struct SplitTest {
-  double gate_chi2 = 9.21;         ///< [chi2, 2 dof] the merge gate
-  double fake_probability = 0.01;  ///< split when mu reaches this
-  double density_per_m2 = 0.0;     ///< [1/m^2] landmarks per area (MapDensity)
 };
 
 /// A later segment of a landmark: from this keyframe on, its observations name `key`.
@@ -49,15 +44,16 @@ struct ReobservationSplit {
   std::map<int, Eigen::Vector2d> guesses;                ///< new key -> position (mean of its observations' inverse)
 };
 
-/// Renames the observations of `graph` (in keyframe order) by segment; new keys count up
-/// from `first_free_key`. Landmarks not in graph.landmarks are left alone.
-ReobservationSplit SplitAtReobservations(LandmarkGraph& graph, const SensorFootprint& footprint, const SplitTest& test,
-                                         int first_free_key);
+/// Renames the observations of `graph` (in keyframe order) by segment, splitting where mu
+/// reaches test.fake_probability; new keys count up from `first_free_key`. Landmarks not in
+/// graph.landmarks are left alone.
+ReobservationSplit SplitAtReobservations(LandmarkGraph& graph, const SensorFootprint& footprint,
+                                         const MergeSearchSettings& test, int first_free_key);
 
 /// mu of the re-observation at keyframe k2, with bearing-range z, of a landmark at m last
 /// seen at keyframe k1 (see above).
 double ReobservationAmbiguity(const LandmarkGraph& graph, int k1, int k2, const Eigen::Vector2d& m,
-                              const Eigen::Vector2d& z, const SplitTest& test);
+                              const Eigen::Vector2d& z, const MergeSearchSettings& test);
 
 /// The key of landmark `key`'s segment at `keyframe` (itself before its first split).
 int SegmentKey(const ReobservationSplit& split, int key, int keyframe);

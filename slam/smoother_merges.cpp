@@ -1,6 +1,8 @@
 #include "slam/smoother_merges.hpp"
 
-#include <Eigen/Cholesky>
+#include "slam/data_association.hpp"
+#include "slam/landmark_merge.hpp"
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -16,36 +18,14 @@ struct Candidate {
   double d2 = 0.0;   ///< unconditional d^2 (seed order)
 };
 
-/// One pair's difference under the current (conditioned) Gaussian.
-struct PairDifference {
-  Eigen::Vector2d D;
-  Eigen::Matrix2d C;
-  double d2 = std::numeric_limits<double>::infinity();
-};
-
-PairDifference Difference(const Eigen::VectorXd& x, const Eigen::MatrixXd& P, int a, int b) {
-  PairDifference p;
-  p.D = x.segment<2>(2 * a) - x.segment<2>(2 * b);
-  p.C = P.block<2, 2>(2 * a, 2 * a) + P.block<2, 2>(2 * b, 2 * b) - P.block<2, 2>(2 * a, 2 * b) -
-        P.block<2, 2>(2 * b, 2 * a);
-  p.C = 0.5 * (p.C + p.C.transpose());
-  const Eigen::LLT<Eigen::Matrix2d> llt(p.C);
-  if (llt.info() == Eigen::Success && p.C.determinant() > 0) p.d2 = p.D.dot(llt.solve(p.D));
-  return p;
+/// One pair's difference under the current (conditioned) Gaussian; landmark i at rows 2i.
+PointDifference Difference(const Eigen::VectorXd& x, const Eigen::MatrixXd& P, int a, int b) {
+  return DifferenceOf(x, P, 2 * a, 2 * b);
 }
 
 /// mu: the landmarks other than a expected in the gate of a pair with difference covariance C.
 double ExpectedOthersInGate(const Eigen::Matrix2d& C, const MergeSearchSettings& s) {
-  return s.density_per_m2 * M_PI * s.gate_chi2 * std::sqrt(std::max(0.0, C.determinant()));
-}
-
-/// Conditions (x, P) on m_a = m_b (see the header).
-void Condition(Eigen::VectorXd& x, Eigen::MatrixXd& P, int a, int b, const PairDifference& p) {
-  const Eigen::MatrixXd PHt = P.middleCols<2>(2 * a) - P.middleCols<2>(2 * b);  // m x 2
-  const Eigen::MatrixXd K = PHt * p.C.inverse();
-  x -= K * p.D;
-  P -= K * PHt.transpose();
-  P = 0.5 * (P + P.transpose());
+  return ExpectedInGate(C, s.gate_chi2, s.density_per_m2);
 }
 
 struct Hypothesis {
@@ -62,17 +42,17 @@ Hypothesis Grow(const std::vector<Candidate>& candidates, int seed, Eigen::Vecto
   int next = seed;
   while (next >= 0) {
     const Candidate& c = candidates[next];
-    const PairDifference p = Difference(x, P, c.a, c.b);
+    const PointDifference p = Difference(x, P, c.a, c.b);
     h.candidates.push_back(next);
     h.log_all_wrong += std::log(std::min(1.0, ExpectedOthersInGate(p.C, s)));
     h.joint_d2 += p.d2;
     used[c.a] = used[c.b] = true;
-    Condition(x, P, c.a, c.b, p);
+    if (!ConditionOnEqual(x, P, 2 * c.a, 2 * c.b)) break;  // a candidate's d^2 is finite: C was positive definite
     next = -1;
     double best = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < candidates.size(); ++k) {
       if (used[candidates[k].a] || used[candidates[k].b]) continue;
-      const PairDifference q = Difference(x, P, candidates[k].a, candidates[k].b);
+      const PointDifference q = Difference(x, P, candidates[k].a, candidates[k].b);
       const double area = q.C.determinant();
       if (q.d2 < s.gate_chi2 && area < best) best = area, next = static_cast<int>(k);
     }
@@ -158,7 +138,7 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
   for (const int k : order) {
     const Candidate& c = candidates[k];
     if (used[c.a] || used[c.b]) continue;
-    const PairDifference p = Difference(x, P, c.a, c.b);
+    const PointDifference p = Difference(x, P, c.a, c.b);
     if (std::log(ExpectedOthersInGate(p.C, s)) >= log_threshold) continue;
     confident.push_back(k);
     used[c.a] = used[c.b] = true;

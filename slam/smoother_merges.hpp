@@ -6,8 +6,8 @@
 // is not: once one pair is taken to be one point, the others' differences, conditioned on
 // it, have small gates. For a hypothesis of pairs p_1 .. p_k, taken in order:
 //   D_i = m_a - m_b of pair i, C_i = its covariance given D_1 = .. = D_{i-1} = 0
-//         (the joint landmark Gaussian conditioned on each merge: x' = x - K D,
-//         Sigma' = Sigma - K H Sigma, K = Sigma H^T C^-1, H = [.. I .. -I ..]),
+//         (the joint landmark Gaussian conditioned on each merge, slam/landmark_merge's
+//         ConditionOnEqual: x' = x - K D, Sigma' = Sigma - K H Sigma, K = Sigma H^T C^-1),
 //   accepted into the hypothesis if D_i^T C_i^-1 D_i < gate (the sum is the joint d^2),
 //   mu_i = density * pi gate sqrt(det C_i): the landmarks other than a expected in b's gate,
 //   P(every pair of the hypothesis is two distinct landmarks) = prod_i min(1, mu_i).
@@ -30,6 +30,7 @@ struct JointLandmarks {
   Eigen::MatrixXd covariance;  ///< joint, 2n x 2n [m^2]
 };
 
+/// The ambiguity test of a merge (and of a split, slam/reobservation_split.hpp).
 struct MergeSearchSettings {
   double gate_chi2 = 9.21;          ///< [chi2, 2 dof] a pair's (conditional) gate
   double fake_probability = 0.01;   ///< accept a hypothesis less likely than this to be all wrong (1 - the gate's probability)

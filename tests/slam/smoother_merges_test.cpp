@@ -131,7 +131,7 @@ LandmarkGraph Corridor(const std::vector<SE2>& poses, const std::vector<int>& ob
 
 TEST(SplitAtReobservations, SplitsOnlyWhereTheLandmarkLeftViewAndDeadReckoningIsAmbiguous) {
   const SensorFootprint footprint{5.0, M_PI / 2};
-  const SplitTest test{kGate, kFake, 0.05};  // a landmark per 20 m^2
+  const MergeSearchSettings test{kGate, kFake, 0.05};  // a landmark per 20 m^2
   std::vector<SE2> poses;
   for (int k = 0; k < 8; ++k) poses.emplace_back(0.2 * k, 0.0, 0.0);
   // Missed at keyframes 2..4 while in view (a missed detection): one segment.
@@ -169,7 +169,7 @@ TEST(ReobservationAmbiguity, ClosedFormForATranslationOnlyChain) {
   g.poses = {SE2(0, 0, 0), SE2(1, 0, 0)};
   g.odometry.push_back({0, SE2(1, 0, 0), Eigen::Vector3d(0.04, 0.09, 0.0).asDiagonal()});
   g.observation_covariance = Eigen::Vector2d(0.01, 0.0004).asDiagonal();
-  const SplitTest test{kGate, kFake, 0.1};
+  const MergeSearchSettings test{kGate, kFake, 0.1};
   const double r = 4.0;
   const double det = (0.04 + 2 * 0.01) * (0.09 + 2 * r * r * 0.0004);
   EXPECT_NEAR(ReobservationAmbiguity(g, 0, 1, Eigen::Vector2d(1 + r, 0), Eigen::Vector2d(r, 0), test),
