@@ -4,6 +4,7 @@
 // (datasets/laser_log.hpp); rawlogs are read by the MRPT plugin (app/rawlog_format.hpp).
 #include <array>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -82,8 +83,11 @@ void ReportLaserLog(const ConvertRequest& r, const Stream& s) {
 void ConvertCarmen(const ConvertRequest& r) {
   CarmenImportOptions o = r.carmen;
   o.odometry_alpha = Alpha(r.alpha, o.odometry_alpha);
-  const Stream s = ReadCarmenLog(r.input, o);
+  CarmenImportReport report;
+  const Stream s = ReadCarmenLog(r.input, o, &report);
   WriteStream(s, r.output);
+  if (report.out_of_order_dropped > 0)
+    std::cerr << "dropped " << report.out_of_order_dropped << " messages stamped before the log's clock (--out-of-order drop)\n";
   ReportLaserLog(r, s);
 }
 
@@ -110,6 +114,17 @@ void AddConvertCommand(CLI::App& app) {
   carmen->add_option("--sigma-range-m", r->carmen.sigma_range_m, "range noise written into the stream header (default 0.01)");
   carmen->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (Thrun's model; default 0.05,0.005,0.05,0.005)")
       ->delimiter(',');
+  carmen
+      ->add_option("--out-of-order", r->carmen.out_of_order,
+                   "a message stamped over 5 s before the log's clock so far: error (default) or drop it")
+      ->transform(CLI::CheckedTransformer(
+          [] {
+            std::map<std::string, CarmenOutOfOrder> m;
+            for (const auto& [value, name] : CarmenOutOfOrderNames()) m[name] = value;
+            return m;
+          }(),
+          CLI::ignore_case))
+      ->default_str("error");
   carmen->callback([r] { ConvertCarmen(*r); });
   CLI::App* rawlog = cmd->add_subcommand(
       "rawlog", "MRPT rawlog (.rawlog, either layout): 2D laser scans, odometry, range-bearing landmarks (MRPT plugin)");

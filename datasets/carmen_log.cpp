@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -99,12 +100,59 @@ void FlaserGeometry(int n, double fov_rad, Scan& s) {
 
 struct ParsedLog {
   std::vector<OdometryPose> odometry;
-  std::vector<Scan> scans;
+  std::vector<Scan> scans;  ///< in file order
   std::map<std::string, double> params;
+  int out_of_order_dropped = 0;
 };
+
+// The log's clock so far (the latest timestamp of a kept message), against which a message
+// is out of order when it is earlier by more than kCarmenOutOfOrderToleranceS.
+class LogClock {
+ public:
+  LogClock(const std::string& name, CarmenOutOfOrder policy) : name_(name), policy_(policy) {}
+  /// True: keep the message. False: drop it (kDrop). Throws for kError.
+  bool Keep(double ts, int line, const std::string& kind, int& dropped) {
+    if (line_ > 0 && ts < latest_ - kCarmenOutOfOrderToleranceS) {
+      if (policy_ == CarmenOutOfOrder::kDrop) return ++dropped, false;
+      char problem[256];
+      std::snprintf(problem, sizeof problem, "%s: timestamp %.6f is %.3f s before line %d's %.6f: the log's clock goes backwards",
+                    kind.c_str(), ts, latest_ - ts, line_, latest_);
+      throw InputError(name_, line, problem,
+                       "convert with --out-of-order drop to skip such messages (a log written by a SLAM tool stamps the "
+                       "corrected poses it writes after each scan 0), or fix the log's timestamps");
+    }
+    if (line_ == 0 || ts > latest_) latest_ = ts, line_ = line;
+    return true;
+  }
+
+ private:
+  const std::string& name_;
+  CarmenOutOfOrder policy_;
+  double latest_ = 0.0;
+  int line_ = 0;  ///< the line of latest_ (0: no message yet)
+};
+
+// Scans must be ordered by their own clock: a log whose timestamps repeat for most
+// consecutive scans (written with too few digits) cannot be ordered against its odometry.
+void RequireScanClock(const ParsedLog& log, const std::string& name) {
+  int equal = 0, first = 0;
+  double first_ts = 0.0;
+  for (size_t i = 1; i < log.scans.size(); ++i)
+    if (log.scans[i].ts == log.scans[i - 1].ts && equal++ == 0) first = log.scans[i].line, first_ts = log.scans[i].ts;
+  const int pairs = static_cast<int>(log.scans.size()) - 1;
+  if (pairs >= 2 && 2 * equal > pairs) {
+    char problem[256];
+    std::snprintf(problem, sizeof problem,
+                  "%d of %d consecutive scans share their timestamp (here %.6f): the log's clock is too coarse to order "
+                  "scans and odometry",
+                  equal, pairs, first_ts);
+    throw InputError(name, first, problem, "re-export the log with its timestamps at millisecond resolution");
+  }
+}
 
 ParsedLog ParseLines(const std::string& text, const std::string& name, const CarmenImportOptions& o) {
   ParsedLog log;
+  LogClock clock(name, o.out_of_order);
   int line_number = 0, order = 0;
   size_t pos = 0;
   while (pos < text.size()) {
@@ -120,7 +168,9 @@ ParsedLog ParseLines(const std::string& text, const std::string& name, const Car
     const std::string& kind = t.word(0);
     if (kind == "ODOM") {
       if (t.size() < 10) t.Fail("expected x y theta tv rv accel ts host logger_ts");
-      log.odometry.push_back({t.Timestamp(), PoseAt(t, 1, "the odometry pose"), order++});
+      const double ts = t.Timestamp();
+      const SE2 pose = PoseAt(t, 1, "the odometry pose");
+      if (clock.Keep(ts, line_number, kind, log.out_of_order_dropped)) log.odometry.push_back({ts, pose, order++});
     } else if (kind == "FLASER") {
       const int n = t.Count(1, "the number of readings");
       if (t.size() != static_cast<size_t>(n) + 11)
@@ -133,6 +183,7 @@ ParsedLog ParseLines(const std::string& text, const std::string& name, const Car
       for (int i = 0; i < n; ++i) s.ranges_m.push_back(t.Number(2 + i, "a range reading"));
       s.laser_pose = PoseAt(t, 2 + n, "the laser pose");
       s.odometry_pose = PoseAt(t, 5 + n, "the odometry pose");
+      if (!clock.Keep(s.ts, line_number, kind, log.out_of_order_dropped)) continue;
       log.odometry.push_back({s.ts, s.odometry_pose, order++});
       log.scans.push_back(std::move(s));
     } else if (kind == "ROBOTLASER1") {
@@ -153,6 +204,7 @@ ParsedLog ParseLines(const std::string& text, const std::string& name, const Car
       for (int i = 0; i < n; ++i) s.ranges_m.push_back(t.Number(9 + i, "a range reading"));
       s.laser_pose = PoseAt(t, 10 + n + m, "the laser pose");
       s.odometry_pose = PoseAt(t, 13 + n + m, "the robot pose");
+      if (!clock.Keep(s.ts, line_number, kind, log.out_of_order_dropped)) continue;
       log.odometry.push_back({s.ts, s.odometry_pose, order++});
       log.scans.push_back(std::move(s));
     } else if (kind == "PARAM" && t.size() >= 3) {
@@ -166,7 +218,13 @@ ParsedLog ParseLines(const std::string& text, const std::string& name, const Car
 
 }  // namespace
 
-Stream ParseCarmenLog(const std::string& text, const std::string& name, const CarmenImportOptions& o) {
+const EnumNames<CarmenOutOfOrder>& CarmenOutOfOrderNames() {
+  static const EnumNames<CarmenOutOfOrder> names = {{CarmenOutOfOrder::kError, "error"}, {CarmenOutOfOrder::kDrop, "drop"}};
+  return names;
+}
+
+Stream ParseCarmenLog(const std::string& text, const std::string& name, const CarmenImportOptions& o,
+                      CarmenImportReport* report) {
   if (!(o.dt_s > 0) || !(o.fov_deg > 0 && o.fov_deg <= 360) || o.range_max_m < 0 || !(o.range_min_m >= 0))
     throw InputError(name, 0, "invalid import options (dt_s > 0, 0 < fov_deg <= 360, range_max_m >= 0)",
                      "check the --fov-deg / --range-max-m values");
@@ -174,6 +232,8 @@ Stream ParseCarmenLog(const std::string& text, const std::string& name, const Ca
   if (log.scans.empty())
     throw InputError(name, 0, "no FLASER or ROBOTLASER1 message: nothing to convert",
                      "give a CARMEN laser log (.clf / .log, optionally .gz or .bz2)");
+  RequireScanClock(log, name);
+  if (report) report->out_of_order_dropped = log.out_of_order_dropped;
 
   LaserLog out;
   out.format = "CARMEN log";
@@ -188,8 +248,8 @@ Stream ParseCarmenLog(const std::string& text, const std::string& name, const Ca
   return AssembleLaserLog(std::move(out), name, options, param == log.params.end() ? 0.0 : param->second);
 }
 
-Stream ReadCarmenLog(const std::string& path, const CarmenImportOptions& options) {
-  return ParseCarmenLog(ReadMaybeCompressedFile(path), path, options);
+Stream ReadCarmenLog(const std::string& path, const CarmenImportOptions& options, CarmenImportReport* report) {
+  return ParseCarmenLog(ReadMaybeCompressedFile(path), path, options, report);
 }
 
 }  // namespace slambox

@@ -21,9 +21,22 @@
 #include <array>
 #include <string>
 
+#include "core/params.hpp"
 #include "core/stream.hpp"
 
 namespace slambox {
+
+/// What to do with a message stamped earlier than the log's clock has already reached, by
+/// more than kCarmenOutOfOrderToleranceS: stop with its line (the default), or skip it.
+/// Logs written by a SLAM tool (the public intel-, freiburg-079- and csail-corrected logs)
+/// stamp the corrected pose they write after each scan 0; sorted by time, those poses
+/// would all land at the start and corrupt the odometry.
+enum class CarmenOutOfOrder { kError, kDrop };
+/// error, drop (for `convert carmen --out-of-order`).
+const EnumNames<CarmenOutOfOrder>& CarmenOutOfOrderNames();
+/// [s] Out-of-order messages within this of the clock so far are kept (sorted by time):
+/// interleaved processes do that; the public logs' worst is 0.90 s (intel), 0.50 s (fr079).
+inline constexpr double kCarmenOutOfOrderToleranceS = 5.0;
 
 struct CarmenImportOptions {
   /// FLASER lines carry no beam geometry: the n beams span this field of view, centred
@@ -38,11 +51,21 @@ struct CarmenImportOptions {
   /// the log does not say, so this is a prior the user may set.
   std::array<double, 4> odometry_alpha = {0.05, 0.005, 0.05, 0.005};
   double dt_s = 0.001;  ///< [s] time step: every event time is a multiple of it
+  CarmenOutOfOrder out_of_order = CarmenOutOfOrder::kError;
+};
+
+/// What the import skipped (for the converter's report).
+struct CarmenImportReport {
+  int out_of_order_dropped = 0;  ///< messages skipped by CarmenOutOfOrder::kDrop
 };
 
 /// Parses a whole log already in memory; `name` is the file name used in errors.
-Stream ParseCarmenLog(const std::string& text, const std::string& name, const CarmenImportOptions& options = {});
+/// Throws InputError for a malformed line, a message out of order (kError), or a clock too
+/// coarse to order the scans (more than half of consecutive scans share one timestamp).
+Stream ParseCarmenLog(const std::string& text, const std::string& name, const CarmenImportOptions& options = {},
+                      CarmenImportReport* report = nullptr);
 /// Reads (and decompresses) the file, then parses it.
-Stream ReadCarmenLog(const std::string& path, const CarmenImportOptions& options = {});
+Stream ReadCarmenLog(const std::string& path, const CarmenImportOptions& options = {},
+                     CarmenImportReport* report = nullptr);
 
 }  // namespace slambox

@@ -198,6 +198,77 @@ TEST(CarmenLog, TimeOriginMapsLogTimesOntoStreamTimes) {
   EXPECT_TRUE(std::holds_alternative<LaserScanEvent>(s.events[2]));
 }
 
+TEST(CarmenLog, MessagesStampedBeforeTheClockStopTheImportOrAreDropped) {
+  // A SLAM tool's log: after each scan the corrected pose, stamped 0 (the public intel-,
+  // freiburg-079- and csail-corrected logs). Sorted by time, every such pose would land at
+  // t = 0 and turn the odometry into jumps; by default the import stops at the first one.
+  const SyntheticLog log = MakeLog();
+  std::string stamped_zero;
+  int first_zero_line = 0, line = 0, zeros = 0;
+  std::istringstream in(log.text);
+  for (std::string l; std::getline(in, l);) {
+    stamped_zero += l + "\n";
+    ++line;
+    if (l.rfind("FLASER", 0) == 0) {
+      stamped_zero += Odom(SE2(50.0, -20.0, 1.0), 0.0);
+      ++zeros;
+      if (first_zero_line == 0) first_zero_line = line + 1;
+    }
+  }
+  ASSERT_GT(zeros, 2);
+  ExpectErrorAtLine(stamped_zero, first_zero_line, "clock goes backwards");
+
+  CarmenImportOptions drop;
+  drop.out_of_order = CarmenOutOfOrder::kDrop;
+  CarmenImportReport report;
+  const Stream dropped = ParseCarmenLog(stamped_zero, "zeros.clf", drop, &report);
+  EXPECT_EQ(report.out_of_order_dropped, zeros);
+  const Stream clean = ParseCarmenLog(log.text, "clean.clf");
+  ASSERT_EQ(dropped.events.size(), clean.events.size());
+  for (size_t i = 0; i < clean.events.size(); ++i) EXPECT_EQ(EventTime(dropped.events[i]), EventTime(clean.events[i]));
+  EXPECT_EQ(dropped.header.start_pose.vector(), clean.header.start_pose.vector());
+
+  // Within the tolerance a message out of file order is kept and sorted (interleaved
+  // processes: the public intel log has one 0.90 s behind).
+  const std::string interleaved = Odom(SE2(), 10.0) + Odom(SE2(0.1, 0, 0), 12.0) + Odom(SE2(0.05, 0, 0), 11.0) +
+                                  Flaser(181, 2.0, SE2(0.1, 0, 0), SE2(0.1, 0, 0), 12.5);
+  CarmenImportReport none;
+  EXPECT_NO_THROW(ParseCarmenLog(interleaved, "interleaved.clf", {}, &none));
+  EXPECT_EQ(none.out_of_order_dropped, 0);
+  ExpectErrorAtLine(Odom(SE2(), 10.0) + Odom(SE2(0.1, 0, 0), 16.0) + Odom(SE2(0.05, 0, 0), 10.9) +
+                        Flaser(181, 2.0, SE2(0.1, 0, 0), SE2(0.1, 0, 0), 16.5),
+                    3, "5.100 s before line 2");
+}
+
+TEST(CarmenLog, AClockTooCoarseToOrderTheScansIsRejected) {
+  // csail-corrected writes its timestamps with 6 digits (1.13486e+09): 404 of its 405
+  // consecutive scan pairs share one, so scans cannot be placed against the odometry.
+  std::string coarse;
+  for (int k = 0; k < 6; ++k)
+    coarse += Odom(SE2(0.1 * k, 0, 0), 1134860000.0 + (k >= 4 ? 10000.0 : 0.0)) +
+              Flaser(181, 2.0, SE2(0.1 * k, 0, 0), SE2(0.1 * k, 0, 0), 1134860000.0 + (k >= 4 ? 10000.0 : 0.0));
+  ExpectErrorAtLine(coarse, 4, "4 of 5 consecutive scans share their timestamp");
+  // One repeat among many is a real log's rounding, not a coarse clock.
+  std::string fine;
+  for (int k = 0; k < 6; ++k) fine += Flaser(181, 2.0, SE2(0.1 * k, 0, 0), SE2(0.1 * k, 0, 0), 100.0 + 0.2 * (k == 1 ? 0 : k));
+  EXPECT_NO_THROW(ParseCarmenLog(fine, "fine.clf"));
+}
+
+TEST(CarmenLog, CorrectedLogsWhenPresentNeedTheirZeroStampsDropped) {
+  const std::string path = testing::PublicDataFile(SLAMBOX_SOURCE_DIR, "rawlogs/intel-corrected.log.gz");
+  if (path.empty()) GTEST_SKIP() << "public data absent (../shared/data or $SLAMBOX_DATA)";
+  EXPECT_THROW(ReadCarmenLog(path), InputError);
+  CarmenImportOptions drop;
+  drop.out_of_order = CarmenOutOfOrder::kDrop;
+  CarmenImportReport report;
+  const Stream s = ReadCarmenLog(path, drop, &report);
+  size_t scans = 0;
+  for (const SensorEvent& e : s.events) scans += std::holds_alternative<LaserScanEvent>(e);
+  EXPECT_EQ(scans, 910u);                     // every FLASER line (the data README)
+  EXPECT_EQ(report.out_of_order_dropped, 910);  // one pose stamped 0 after each
+  EXPECT_NEAR(s.header.duration_s, 2691.3, 0.1);
+}
+
 TEST(CarmenLog, IntelLabLogWhenPresent) {
   const std::string path = testing::PublicDataFile(SLAMBOX_SOURCE_DIR, "rawlogs/intel.clf.bz2");
   if (path.empty()) GTEST_SKIP() << "public data absent (../shared/data or $SLAMBOX_DATA)";
