@@ -124,8 +124,9 @@ bool HasIsamLines(std::string_view text) {
 // The 2x2 information of a landmark edge: g2o's upper triangle I11 I12 I22, or iSAM's
 // upper-triangular square root R = [sxx sxy; 0 syy], Omega = R^T R.
 Eigen::Matrix2d PointInformation(const LineParser& p, bool isam_sqrt) {
+  const double a = p.Number(5), b = p.Number(6), c = p.Number(7);
   Eigen::Matrix2d M;
-  M << p.Number(5), p.Number(6), 0.0, p.Number(7);
+  M << a, b, 0.0, c;
   if (isam_sqrt) return M.transpose() * M;
   M(1, 0) = M(0, 1);
   return M;
@@ -149,8 +150,10 @@ enum class EdgeFormat { kG2o, kToro, kIsam };
 Eigen::Matrix3d Information(const LineParser& p, EdgeFormat format) {
   double xx, xy, xt, yy, yt, tt;
   if (format == EdgeFormat::kIsam) {  // sxx sxy sxt syy syt stt: square root R, Omega = R^T R
+    // Values read before the comma initializer: a throw inside one trips its destructor's assert.
+    xx = p.Number(6), xy = p.Number(7), xt = p.Number(8), yy = p.Number(9), yt = p.Number(10), tt = p.Number(11);
     Eigen::Matrix3d R;
-    R << p.Number(6), p.Number(7), p.Number(8), 0.0, p.Number(9), p.Number(10), 0.0, 0.0, p.Number(11);
+    R << xx, xy, xt, 0.0, yy, yt, 0.0, 0.0, tt;
     return R.transpose() * R;
   }
   if (format == EdgeFormat::kToro) {  // inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr

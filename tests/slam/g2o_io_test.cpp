@@ -239,6 +239,10 @@ TEST(G2oIo, MalformedLandmarkInputNamesTheLine) {
   ExpectInputError("EDGE2 0 1 1 0 0 2 1 0 3 0.5 4\nLANDMARK 1 0 2 1 0 1 2\n", 2, "not positive definite");
   ExpectInputError("EDGE2 0 1 1 0 0 2 1 0 3 0.5 4\nLANDMARK 1 0 2 inf 3 1 2\n", 2, "is inf");
   ExpectInputError(v + "EDGE_SE2_XY 0 5 1 1 1 0 1\nLANDMARK 1 0 2 1 3 1 2\n", 5, "mixes g2o points");
+  // Fuzz finding: a bad number inside iSAM's square root threw through an Eigen comma
+  // initializer (its destructor asserts in a build with assertions).
+  ExpectInputError("EDGE2 0 1 1 0 0 50 0 0 50 ~0 100\nLANDMARK 1 0 2 1 10 0 10\n", 1, "not a number");
+  ExpectInputError("EDGE2 0 1 1 0 0 50 0 0 50 0 100\nLANDMARK 1 0 2 1 10 x 10\n", 2, "not a number");
   // Edges only: an id named both as a pose and as a point.
   ExpectInputError("EDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\nEDGE_SE2_XY 0 1 1 1 1 0 1\n", 2, "but it is a pose");
 }
