@@ -14,13 +14,17 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/limits.hpp"
+#include "slam/landmark_edge_cost.hpp"
 #include "slam/pose_graph_cost.hpp"
 
 namespace slambox {
 namespace {
 
+enum class NodeKind { kPose, kLandmark };
 struct RawVertex {
-  SE2 pose;
+  NodeKind kind = NodeKind::kPose;
+  SE2 pose;               ///< kPose
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();  ///< kLandmark
   int line = 0;
 };
 struct RawEdge {
@@ -28,9 +32,16 @@ struct RawEdge {
   PoseGraphEdge edge;
   int line = 0;
 };
+struct RawLandmarkEdge {
+  long long pose = 0, landmark = 0;
+  LandmarkEdge edge;
+  int line = 0;
+  bool isam = false;  ///< LANDMARK: the landmark id is iSAM's own namespace, not a vertex id
+};
 
 const char* kTagsFix =
-    "use VERTEX_SE2, EDGE_SE2, FIX (g2o), VERTEX2, EDGE2 (TORO) or ODOMETRY (iSAM); '#' starts a comment";
+    "use VERTEX_SE2, VERTEX_XY, EDGE_SE2, EDGE_SE2_XY, FIX (g2o), VERTEX2, EDGE2 (TORO) or ODOMETRY, EDGE2, "
+    "LANDMARK (iSAM); '#' starts a comment";
 
 class LineParser {
  public:
@@ -91,6 +102,36 @@ class LineParser {
   const std::vector<std::string>& tokens_;
 };
 
+std::string_view FirstWord(std::string_view line) {
+  size_t i = 0;
+  while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+  size_t j = i;
+  while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+  return line.substr(i, j - i);
+}
+
+bool HasIsamLines(std::string_view text) {
+  for (size_t pos = 0; pos < text.size();) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view word = FirstWord(text.substr(pos, end - pos));
+    if (word == "ODOMETRY" || word == "LANDMARK") return true;
+    pos = end + 1;
+  }
+  return false;
+}
+
+// The 2x2 information of a landmark edge: g2o's upper triangle I11 I12 I22, or iSAM's
+// upper-triangular square root R = [sxx sxy; 0 syy], Omega = R^T R.
+Eigen::Matrix2d PointInformation(const LineParser& p, bool isam_sqrt) {
+  const double a = p.Number(5), b = p.Number(6), c = p.Number(7);
+  Eigen::Matrix2d M;
+  M << a, b, 0.0, c;
+  if (isam_sqrt) return M.transpose() * M;
+  M(1, 0) = M(0, 1);
+  return M;
+}
+
 void SplitWords(std::string_view line, std::vector<std::string>* words) {
   words->clear();
   size_t i = 0;
@@ -109,8 +150,10 @@ enum class EdgeFormat { kG2o, kToro, kIsam };
 Eigen::Matrix3d Information(const LineParser& p, EdgeFormat format) {
   double xx, xy, xt, yy, yt, tt;
   if (format == EdgeFormat::kIsam) {  // sxx sxy sxt syy syt stt: square root R, Omega = R^T R
+    // Values read before the comma initializer: a throw inside one trips its destructor's assert.
+    xx = p.Number(6), xy = p.Number(7), xt = p.Number(8), yy = p.Number(9), yt = p.Number(10), tt = p.Number(11);
     Eigen::Matrix3d R;
-    R << p.Number(6), p.Number(7), p.Number(8), 0.0, p.Number(9), p.Number(10), 0.0, 0.0, p.Number(11);
+    R << xx, xy, xt, 0.0, yy, yt, 0.0, 0.0, tt;
     return R.transpose() * R;
   }
   if (format == EdgeFormat::kToro) {  // inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr
@@ -129,8 +172,11 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
   std::map<long long, RawVertex> vertices;
   std::vector<RawEdge> edges;
   std::vector<std::pair<long long, int>> fixed_ids;
-  // iSAM files (ODOMETRY lines) give square-root information, also on their EDGE2 lines.
-  const bool isam = text.rfind("ODOMETRY", 0) == 0 || text.find("\nODOMETRY") != std::string::npos;
+  // iSAM files (any ODOMETRY or LANDMARK line, wherever it is) give square-root
+  // information, also on their EDGE2 lines (iSAM's loader reads EDGE2 as ODOMETRY).
+  const bool isam = HasIsamLines(text);
+  std::vector<RawLandmarkEdge> landmark_edges;
+  std::map<long long, int> isam_landmarks;  // iSAM landmark id -> first line naming it
   int line = 0;
   std::vector<std::string> tokens;
   for (size_t pos = 0; pos < text.size();) {
@@ -143,14 +189,35 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
     if (tokens.empty() || tokens[0][0] == '#') continue;
     const std::string& tag = tokens[0];
     LineParser p(name, line, tokens);
-    if (tag == "VERTEX_SE2" || tag == "VERTEX2") {
-      p.ExpectCount(5, tag + " id x y theta");
+    if (tag == "VERTEX_SE2" || tag == "VERTEX2" || tag == "VERTEX_XY") {
+      const bool point = tag == "VERTEX_XY";
+      p.ExpectCount(point ? 4 : 5, tag + (point ? " id x y" : " id x y theta"));
       const long long id = p.Id(1);
       if (vertices.count(id))
         throw InputError(name, line, "vertex " + std::to_string(id) + " is defined twice (first on line " +
                                          std::to_string(vertices[id].line) + ")",
-                         "give each vertex one line");
-      vertices[id] = {SE2(p.Coordinate(2), p.Coordinate(3), p.Angle(4)), line};
+                         "give each vertex one line (poses and points share one id space)");
+      RawVertex v{point ? NodeKind::kLandmark : NodeKind::kPose, SE2(), Eigen::Vector2d::Zero(), line};
+      if (point) v.point = Eigen::Vector2d(p.Coordinate(2), p.Coordinate(3));
+      else v.pose = SE2(p.Coordinate(2), p.Coordinate(3), p.Angle(4));
+      vertices[id] = v;
+    } else if (tag == "EDGE_SE2_XY" || tag == "LANDMARK") {
+      const bool sqrt_info = tag == "LANDMARK";
+      p.ExpectCount(8, tag + " pose_id point_id dx dy " + (sqrt_info ? "sxx sxy syy" : "I11 I12 I22"));
+      RawLandmarkEdge e;
+      e.pose = p.Id(1);
+      e.landmark = p.Id(2);
+      e.line = line;
+      e.isam = sqrt_info;
+      e.edge.p_pose_landmark = Eigen::Vector2d(p.Coordinate(3), p.Coordinate(4));
+      e.edge.information = PointInformation(p, sqrt_info);
+      Eigen::Matrix2d U;
+      if (!SqrtInformation(e.edge.information, &U))
+        throw InputError(name, line, "landmark edge information matrix is not positive definite",
+                         sqrt_info ? "give an upper-triangular square-root information (sxx sxy syy) with a nonzero diagonal"
+                                   : "give the upper triangle of a positive definite 2x2 information (I11 I12 I22)");
+      if (sqrt_info) isam_landmarks.emplace(e.landmark, line);
+      landmark_edges.push_back(e);
     } else if (tag == "EDGE_SE2" || tag == "EDGE2" || tag == "ODOMETRY") {
       const EdgeFormat format = tag == "EDGE_SE2"              ? EdgeFormat::kG2o
                                 : (tag == "ODOMETRY" || isam) ? EdgeFormat::kIsam
@@ -183,36 +250,80 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
     }
   }
 
+  bool g2o_points = false;
+  for (const auto& [id, v] : vertices) g2o_points = g2o_points || v.kind == NodeKind::kLandmark;
+  for (const RawLandmarkEdge& e : landmark_edges) g2o_points = g2o_points || !e.isam;
+  for (const RawLandmarkEdge& e : landmark_edges)
+    if (g2o_points && e.isam)
+      throw InputError(name, e.line, "the file mixes g2o points (VERTEX_XY / EDGE_SE2_XY) with iSAM LANDMARK lines",
+                       "write landmarks in one format: g2o's (shared ids with poses) or iSAM's (own ids)");
+
   PoseGraphFile file;
-  file.has_initial_guess = !vertices.empty();
-  if (vertices.empty()) {  // edges only: vertices are whatever the edges name
+  file.has_initial_guess = !vertices.empty() && isam_landmarks.empty();
+  if (vertices.empty()) {  // edges only: vertices are whatever the edges name, of the kind they name
     for (const RawEdge& e : edges) {
-      vertices.emplace(e.from, RawVertex{SE2(), e.line});
-      vertices.emplace(e.to, RawVertex{SE2(), e.line});
+      vertices.emplace(e.from, RawVertex{NodeKind::kPose, SE2(), Eigen::Vector2d::Zero(), e.line});
+      vertices.emplace(e.to, RawVertex{NodeKind::kPose, SE2(), Eigen::Vector2d::Zero(), e.line});
+    }
+    for (const RawLandmarkEdge& e : landmark_edges) {
+      vertices.emplace(e.pose, RawVertex{NodeKind::kPose, SE2(), Eigen::Vector2d::Zero(), e.line});
+      if (!e.isam) vertices.emplace(e.landmark, RawVertex{NodeKind::kLandmark, SE2(), Eigen::Vector2d::Zero(), e.line});
     }
   }
   if (vertices.empty()) throw InputError(name, 0, "no vertices or edges found", "is this a g2o or TORO 2D graph?");
-  std::map<long long, int> index;
+  std::map<long long, int> index, landmark_index;  // file id -> pose index / landmark index
   for (const auto& [id, v] : vertices) {
+    if (v.kind == NodeKind::kLandmark) {
+      landmark_index[id] = static_cast<int>(file.landmark_ids.size());
+      file.landmark_ids.push_back(static_cast<int>(id));
+      file.graph.landmarks.push_back(v.point);
+      continue;
+    }
     index[id] = static_cast<int>(file.vertex_ids.size());
     file.vertex_ids.push_back(static_cast<int>(id));
     file.graph.poses.push_back(v.pose);
   }
+  for (const auto& [id, first_line] : isam_landmarks) {  // iSAM's own namespace, no initial guess
+    landmark_index[id] = static_cast<int>(file.landmark_ids.size());
+    file.landmark_ids.push_back(static_cast<int>(id));
+    file.graph.landmarks.push_back(Eigen::Vector2d::Zero());
+  }
+  auto pose_of = [&](long long id, int edge_line, const std::string& tag) {
+    const auto it = index.find(id);
+    if (it != index.end()) return it->second;
+    if (vertices.count(id))
+      throw InputError(name, edge_line, tag + " names vertex " + std::to_string(id) + " as a pose, but it is a VERTEX_XY point",
+                       "a pose end must be a VERTEX_SE2 pose; a point is observed with EDGE_SE2_XY pose_id point_id");
+    throw InputError(name, edge_line, tag + " names vertex " + std::to_string(id) + ", which has no VERTEX line",
+                     "add 'VERTEX_SE2 " + std::to_string(id) + " x y theta' or remove the edge");
+  };
   for (const RawEdge& e : edges) {
-    for (long long id : {e.from, e.to})
-      if (!index.count(id))
-        throw InputError(name, e.line, "edge names vertex " + std::to_string(id) + ", which has no VERTEX line",
-                         "add 'VERTEX_SE2 " + std::to_string(id) + " x y theta' or remove the edge");
     PoseGraphEdge edge = e.edge;
-    edge.from = index[e.from];
-    edge.to = index[e.to];
+    edge.from = pose_of(e.from, e.line, "edge");
+    edge.to = pose_of(e.to, e.line, "edge");
     edge.loop_closure = std::abs(edge.to - edge.from) != 1;
     file.graph.edges.push_back(edge);
   }
+  for (const RawLandmarkEdge& e : landmark_edges) {
+    LandmarkEdge edge = e.edge;
+    const std::string tag = e.isam ? "LANDMARK" : "EDGE_SE2_XY";
+    edge.pose = pose_of(e.pose, e.line, tag);
+    const auto it = landmark_index.find(e.landmark);
+    if (it == landmark_index.end()) {
+      if (vertices.count(e.landmark))
+        throw InputError(name, e.line, tag + " names vertex " + std::to_string(e.landmark) + " as its point, but it is a pose",
+                         "the second id of EDGE_SE2_XY must be a VERTEX_XY point");
+      throw InputError(name, e.line, tag + " names point " + std::to_string(e.landmark) + ", which has no VERTEX line",
+                       "add 'VERTEX_XY " + std::to_string(e.landmark) + " x y' or remove the edge");
+    }
+    edge.landmark = it->second;
+    file.graph.landmark_edges.push_back(edge);
+  }
   for (const auto& [id, fix_line] : fixed_ids) {
     if (!index.count(id))
-      throw InputError(name, fix_line, "FIX names vertex " + std::to_string(id) + ", which does not exist",
-                       "fix an existing vertex id");
+      throw InputError(name, fix_line,
+                       "FIX names vertex " + std::to_string(id) + (vertices.count(id) ? ", a point" : ", which does not exist"),
+                       "fix an existing pose (VERTEX_SE2) id: the fixed pose is the gauge");
     file.fixed.push_back(index[id]);
   }
   file.graph.anchor = file.fixed.empty() ? 0 : file.fixed.front();
@@ -227,13 +338,37 @@ PoseGraphFile ReadPoseGraph(const std::string& path) {
   return ParsePoseGraph(text.str(), path);
 }
 
-std::string FormatPoseGraph(const PoseGraph& graph, const std::vector<int>& vertex_ids) {
+namespace {
+std::vector<int> WrittenLandmarkIds(const PoseGraph& graph, const std::vector<int>& vertex_ids,
+                                    const std::vector<int>& landmark_ids) {
+  const size_t n = graph.poses.size(), m = graph.landmarks.size();
+  std::vector<int> pose_ids(n);
+  for (size_t i = 0; i < n; ++i) pose_ids[i] = vertex_ids.empty() ? static_cast<int>(i) : vertex_ids.at(i);
+  std::sort(pose_ids.begin(), pose_ids.end());
+  const auto is_pose = [&](int id) { return std::binary_search(pose_ids.begin(), pose_ids.end(), id); };
+  if (landmark_ids.size() == m && std::none_of(landmark_ids.begin(), landmark_ids.end(), is_pose)) return landmark_ids;
+  std::vector<int> out;
+  out.reserve(m);
+  for (int id = 0; out.size() < m; ++id)  // the smallest ids no pose uses, in landmark order
+    if (!is_pose(id)) out.push_back(id);
+  return out;
+}
+}  // namespace
+
+std::string FormatPoseGraph(const PoseGraph& graph, const std::vector<int>& vertex_ids,
+                            const std::vector<int>& landmark_ids) {
   auto id = [&](int i) { return vertex_ids.empty() ? i : vertex_ids.at(i); };
+  const std::vector<int> point_ids = WrittenLandmarkIds(graph, vertex_ids, landmark_ids);
   std::string out;
   char buf[512];
   for (size_t i = 0; i < graph.poses.size(); ++i) {
     const SE2& p = graph.poses[i];
     std::snprintf(buf, sizeof buf, "VERTEX_SE2 %d %.17g %.17g %.17g\n", id(static_cast<int>(i)), p.x, p.y, p.theta);
+    out += buf;
+  }
+  for (size_t j = 0; j < graph.landmarks.size(); ++j) {
+    const Eigen::Vector2d& l = graph.landmarks[j];
+    std::snprintf(buf, sizeof buf, "VERTEX_XY %d %.17g %.17g\n", point_ids[j], l.x(), l.y());
     out += buf;
   }
   if (!graph.poses.empty()) {
@@ -248,11 +383,18 @@ std::string FormatPoseGraph(const PoseGraph& graph, const std::vector<int>& vert
                   I(1, 2), I(2, 2));
     out += buf;
   }
+  for (const LandmarkEdge& e : graph.landmark_edges) {
+    const Eigen::Matrix2d& I = e.information;
+    std::snprintf(buf, sizeof buf, "EDGE_SE2_XY %d %d %.17g %.17g %.17g %.17g %.17g\n", id(e.pose),
+                  point_ids.at(e.landmark), e.p_pose_landmark.x(), e.p_pose_landmark.y(), I(0, 0), I(0, 1), I(1, 1));
+    out += buf;
+  }
   return out;
 }
 
-void WritePoseGraph(const std::string& path, const PoseGraph& graph, const std::vector<int>& vertex_ids) {
-  WriteFileAtomic(path, FormatPoseGraph(graph, vertex_ids));
+void WritePoseGraph(const std::string& path, const PoseGraph& graph, const std::vector<int>& vertex_ids,
+                    const std::vector<int>& landmark_ids) {
+  WriteFileAtomic(path, FormatPoseGraph(graph, vertex_ids, landmark_ids));
 }
 
 }  // namespace slambox

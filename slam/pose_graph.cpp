@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "slam/angle_manifold.hpp"
 #include "slam/dcs_loss.hpp"
+#include "slam/landmark_edge_cost.hpp"
 #include "slam/pose_graph_cost.hpp"
 #include "slam/sparse_marginals.hpp"
 
@@ -33,6 +34,13 @@ double Chi2(const PoseGraph& graph) {
   for (const PoseGraphEdge& edge : graph.edges) {
     if (edge.from < 0 || edge.from >= n || edge.to < 0 || edge.to >= n) continue;
     const Eigen::Vector3d e = EdgeError(graph.poses[edge.from], graph.poses[edge.to], edge.T_from_to);
+    chi2 += e.dot(edge.information * e);
+  }
+  const int m = static_cast<int>(graph.landmarks.size());
+  for (const LandmarkEdge& edge : graph.landmark_edges) {
+    if (edge.pose < 0 || edge.pose >= n || edge.landmark < 0 || edge.landmark >= m) continue;
+    const Eigen::Vector2d e =
+        LandmarkEdgeError(graph.poses[edge.pose].vector(), graph.landmarks[edge.landmark], edge.p_pose_landmark);
     chi2 += e.dot(edge.information * e);
   }
   return chi2;
@@ -56,6 +64,34 @@ std::unique_ptr<ceres::LossFunction> MakeLoopLoss(RobustKernel kernel, double sc
     case RobustKernel::kDcs: return std::make_unique<DcsLoss>(scale);
   }
   return nullptr;
+}
+
+// Landmark edges name existing poses and landmarks and have SPD information; landmarks
+// are finite. Their whitening factors are returned, as for pose edges.
+void ValidateLandmarks(const PoseGraph& graph, std::vector<Eigen::Matrix2d>* sqrt_informations) {
+  const int n = static_cast<int>(graph.poses.size());
+  const int m = static_cast<int>(graph.landmarks.size());
+  for (int j = 0; j < m; ++j)
+    if (!graph.landmarks[j].allFinite())
+      throw InputError("", 0, "landmark " + std::to_string(j) + " of the initial guess is not finite",
+                       "give finite landmark positions (or place them with LandmarksFromObservations)");
+  sqrt_informations->resize(graph.landmark_edges.size());
+  for (size_t k = 0; k < graph.landmark_edges.size(); ++k) {
+    const LandmarkEdge& edge = graph.landmark_edges[k];
+    const std::string name = "landmark edge " + std::to_string(k) + " (pose " + std::to_string(edge.pose) +
+                             " -> landmark " + std::to_string(edge.landmark) + ")";
+    if (edge.pose < 0 || edge.pose >= n)
+      throw InputError("", 0, name + " names a missing pose (the graph has " + std::to_string(n) + ")",
+                       "connect landmark edges only to poses 0.." + std::to_string(n - 1));
+    if (edge.landmark < 0 || edge.landmark >= m)
+      throw InputError("", 0, name + " names a missing landmark (the graph has " + std::to_string(m) + ")",
+                       "add the landmark to PoseGraph::landmarks");
+    if (!edge.p_pose_landmark.allFinite())
+      throw InputError("", 0, name + " has a non-finite measurement", "give a finite measured point");
+    if (!SqrtInformation(edge.information, &(*sqrt_informations)[k]))
+      throw InputError("", 0, name + " has an information matrix that is not symmetric positive definite",
+                       "give a symmetric positive definite 2x2 information matrix");
+  }
 }
 
 void ValidateGraph(const PoseGraph& graph, const PoseGraphSolveOptions& options,
@@ -91,26 +127,44 @@ void ValidateGraph(const PoseGraph& graph, const PoseGraphSolveOptions& options,
 }
 
 // Diagonal blocks of the inverse of J^T J at the solution: the marginal covariance of each
-// pose under the Gaussian (Laplace) approximation of the posterior, the anchor fixed.
-// Selected inversion of the sparse Cholesky factor (slam/sparse_marginals.hpp); empty
-// when J^T J is not positive definite (a pose the edges do not determine).
-std::vector<Eigen::Matrix3d> MarginalCovariances(ceres::Problem& problem, std::vector<double>& x, size_t anchor) {
-  const size_t n = x.size() / 3;
-  std::vector<Eigen::Matrix3d> out(n, Eigen::Matrix3d::Zero());
+// pose (and landmark) under the Gaussian (Laplace) approximation of the posterior, the anchor
+// fixed. Every landmark block is a column of J^T J too (after the poses), so the pose blocks
+// are marginals over the landmarks, not conditionals given them. Selected inversion of the
+// sparse Cholesky factor (slam/sparse_marginals.hpp); false when J^T J is not positive
+// definite (a pose or landmark the edges do not determine).
+bool MarginalCovariances(ceres::Problem& problem, std::vector<double>& x, std::vector<double>& l, size_t anchor,
+                         PoseGraphSolveResult* result) {
+  const size_t n = x.size() / 3, m = l.size() / 2;
+  result->marginal_covariances.assign(n, Eigen::Matrix3d::Zero());
+  if (m > 0) result->landmark_marginal_covariances.assign(m, Eigen::Matrix2d::Zero());
   std::vector<double*> blocks;
-  std::vector<size_t> pose_of_block;
+  std::vector<size_t> node_of_block;  // pose index, or n + landmark index
   std::vector<std::pair<int, int>> requested;
+  int offset = 0;
   for (size_t i = 0; i < n; ++i)
     if (i != anchor && problem.HasParameterBlock(&x[3 * i])) {
-      requested.emplace_back(static_cast<int>(3 * blocks.size()), 3);
+      requested.emplace_back(offset, 3);
+      offset += 3;
       blocks.push_back(&x[3 * i]);
-      pose_of_block.push_back(i);
+      node_of_block.push_back(i);
     }
-  if (blocks.empty()) return out;
+  for (size_t j = 0; j < m; ++j)
+    if (problem.HasParameterBlock(&l[2 * j])) {
+      requested.emplace_back(offset, 2);
+      offset += 2;
+      blocks.push_back(&l[2 * j]);
+      node_of_block.push_back(n + j);
+    }
+  if (blocks.empty()) return true;
   const DiagonalBlocksOfInverse inverse = InverseDiagonalBlocks(InformationMatrix(problem, blocks), requested);
-  if (!inverse.ok) return {};
-  for (size_t b = 0; b < blocks.size(); ++b) out[pose_of_block[b]] = inverse.blocks[b];
-  return out;
+  if (!inverse.ok) return false;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    if (node_of_block[b] < n)
+      result->marginal_covariances[node_of_block[b]] = inverse.blocks[b];
+    else
+      result->landmark_marginal_covariances[node_of_block[b] - n] = inverse.blocks[b];
+  }
+  return true;
 }
 
 }  // namespace
@@ -119,6 +173,8 @@ PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOption
   const auto start = std::chrono::steady_clock::now();
   std::vector<Eigen::Matrix3d> sqrt_informations;
   ValidateGraph(graph, options, &sqrt_informations);
+  std::vector<Eigen::Matrix2d> landmark_sqrt_informations;
+  ValidateLandmarks(graph, &landmark_sqrt_informations);
 
   PoseGraphSolveResult result;
   result.chi2_initial = Chi2(graph);
@@ -130,6 +186,12 @@ PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOption
     x[3 * i] = graph.poses[i].x;
     x[3 * i + 1] = graph.poses[i].y;
     x[3 * i + 2] = graph.poses[i].theta;
+  }
+  const size_t m = graph.landmarks.size();  // one (x, y) block per landmark, after the poses
+  std::vector<double> l(2 * m);
+  for (size_t j = 0; j < m; ++j) {
+    l[2 * j] = graph.landmarks[j].x();
+    l[2 * j + 1] = graph.landmarks[j].y();
   }
 
   std::unique_ptr<ceres::LossFunction> loop_loss = MakeLoopLoss(options.loop_kernel, options.kernel_scale);
@@ -144,6 +206,11 @@ PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOption
     ceres::LossFunction* loss = edge.loop_closure ? loop_loss.get() : nullptr;
     problem.AddResidualBlock(new PoseGraphEdgeCost(edge.T_from_to, sqrt_informations[k]), loss, &x[3 * i],
                              &x[3 * j]);
+  }
+  for (size_t k = 0; k < graph.landmark_edges.size(); ++k) {
+    const LandmarkEdge& edge = graph.landmark_edges[k];
+    problem.AddResidualBlock(new LandmarkEdgeCost(edge.p_pose_landmark, landmark_sqrt_informations[k]), nullptr,
+                             &x[3 * static_cast<size_t>(edge.pose)], &l[2 * static_cast<size_t>(edge.landmark)]);
   }
   for (size_t i = 0; i < n; ++i)
     if (problem.HasParameterBlock(&x[3 * i])) problem.SetManifold(&x[3 * i], &pose_manifold);
@@ -168,6 +235,7 @@ PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOption
 
   if (result.usable) {
     for (size_t i = 0; i < n; ++i) graph.poses[i] = SE2(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+    for (size_t j = 0; j < m; ++j) graph.landmarks[j] = Eigen::Vector2d(l[2 * j], l[2 * j + 1]);
   }
   result.chi2_final = Chi2(graph);
 
@@ -183,7 +251,10 @@ PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOption
       result.edge_weights[k] = rho[1];
     }
   }
-  if (options.compute_marginals && result.usable) result.marginal_covariances = MarginalCovariances(problem, x, a);
+  if (options.compute_marginals && result.usable && !MarginalCovariances(problem, x, l, a, &result)) {
+    result.marginal_covariances.clear();
+    result.landmark_marginal_covariances.clear();
+  }
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

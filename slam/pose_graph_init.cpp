@@ -173,4 +173,23 @@ std::vector<SE2> LagoInitialization(const PoseGraph& graph) {
   return poses;
 }
 
+std::vector<Eigen::Vector2d> LandmarksFromObservations(const PoseGraph& graph, const std::vector<SE2>& poses,
+                                                       LandmarkPlacement placement) {
+  std::vector<Eigen::Vector2d> sum(graph.landmarks.size(), Eigen::Vector2d::Zero());
+  std::vector<int> count(graph.landmarks.size(), 0);
+  for (const LandmarkEdge& e : graph.landmark_edges) {
+    if (e.pose < 0 || e.pose >= static_cast<int>(poses.size()) || e.landmark < 0 ||
+        e.landmark >= static_cast<int>(sum.size()))
+      continue;  // SolvePoseGraph reports it
+    if (placement == LandmarkPlacement::kFirstObservation && count[e.landmark] > 0) continue;
+    const SE2& T = poses[e.pose];
+    sum[e.landmark] += T.translation() + T.rotation() * e.p_pose_landmark;
+    ++count[e.landmark];
+  }
+  std::vector<Eigen::Vector2d> out = graph.landmarks;
+  for (size_t j = 0; j < out.size(); ++j)
+    if (count[j] > 0) out[j] = sum[j] / count[j];
+  return out;
+}
+
 }  // namespace slambox

@@ -7,6 +7,9 @@
 //    squares over angle differences made consistent around cycles (2 pi k regularization
 //    from the tree), then positions by linear least squares given those orientations.
 // Poses not connected to the anchor keep their input values.
+// Landmarks (pose-only initializers do not place them): from their observations at the
+// initialized poses, l = t_i + R_i z.
+#include <Eigen/Core>
 #include <vector>
 
 #include "core/se2.hpp"
@@ -33,5 +36,15 @@ std::vector<SE2> LagoInitialization(const PoseGraph& graph);
 
 /// LAGO's first phase alone: orientations (unwrapped, [rad]) of every pose.
 std::vector<double> LagoOrientations(const PoseGraph& graph, const SpanningTree& tree);
+
+enum class LandmarkPlacement {
+  kFirstObservation,  ///< from the first edge observing it
+  kMean,              ///< the mean over every edge observing it (the least-squares point for equal, isotropic information)
+};
+
+/// Each observed landmark placed from its edges at `poses`; unobserved ones keep their
+/// graph value.
+std::vector<Eigen::Vector2d> LandmarksFromObservations(const PoseGraph& graph, const std::vector<SE2>& poses,
+                                                       LandmarkPlacement placement = LandmarkPlacement::kMean);
 
 }  // namespace slambox
