@@ -44,6 +44,7 @@ struct OptimizeArgs {
   int threads = 1;
   bool json = false;
   std::vector<std::string> groundtruth_paths;
+  IsamNoise noise = IsamNoise::kAuto;
 };
 
 // One initial guess solved: the method, its cost and the solution.
@@ -98,7 +99,8 @@ std::vector<InitAttempt> SolveWithInit(const PoseGraphFile& file, InitMethod ini
 }
 
 void RunOptimize(const OptimizeArgs& args) {
-  PoseGraphFile file = ReadPoseGraph(args.graph_path);
+  PoseGraphFile file = ReadPoseGraph(args.graph_path, {.isam_noise = args.noise});
+  const char* noise = file.isam_noise ? NameOf(IsamNoiseNames(), *file.isam_noise) : nullptr;
   VertexTruth truth;  // read before the solve: a bad file fails fast
   for (const std::string& path : args.groundtruth_paths) ReadVertexTruth(path, &truth);
   int loop_edges = 0;
@@ -151,7 +153,8 @@ void RunOptimize(const OptimizeArgs& args) {
                         {"ate_aligned_rmse_m", metric("ate_aligned_rmse_m")},
                         {"landmark_rmse_m", metric("landmark_rmse_m")},
                         {"matched_poses", metric("matched_poses")},
-                        {"landmark_matched", metric("landmark_matched")}};
+                        {"landmark_matched", metric("landmark_matched")},
+                        {"isam_noise", noise ? nlohmann::ordered_json(noise) : nlohmann::ordered_json()}};
     nlohmann::ordered_json tried = nlohmann::ordered_json::array();
     for (const InitAttempt& a : attempts)
       tried.push_back({{"init", InitName(a.init)},
@@ -166,6 +169,7 @@ void RunOptimize(const OptimizeArgs& args) {
     std::printf("vertices      %zu poses, %zu landmarks\n", file.graph.poses.size(), landmarks);
     std::printf("edges         %zu (%d loop closures), %zu landmark edges\n", file.graph.edges.size(), loop_edges,
                 landmark_edges);
+    if (noise) std::printf("noise         %s (the ODOMETRY / LANDMARK lines' values)\n", noise);
     std::printf("init          %s (%.3f s)\n", init.c_str(), init_time_s);
     if (attempts.size() > 1) {
       std::printf("auto tried   ");
@@ -238,6 +242,18 @@ void AddOptimizeCommand(CLI::App& app) {
                   "the graph's ids; may be given twice (poses, landmarks): reports ate_rmse_m, ate_aligned_rmse_m, "
                   "landmark_rmse_m")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--noise", args->noise,
+                  "ODOMETRY / LANDMARK (and their EDGE2) values: sqrt-information (iSAM), covariance (GTSAM's "
+                  "datasets), or auto: decided from the file's diagonal values (>= 1 iSAM's, <= 1 covariances)")
+      ->transform(CLI::CheckedTransformer(
+                      [] {
+                        std::map<std::string, IsamNoise> m;
+                        for (const auto& [value, name] : IsamNoiseNames()) m[name] = value;
+                        return m;
+                      }(),
+                      CLI::ignore_case)
+                      .description("{auto,sqrt-information,covariance}"))
+      ->default_str("auto");
   cmd->add_flag("--json", args->json, "print one JSON object instead of text");
   cmd->callback([args]() { RunOptimize(*args); });
 }

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -121,14 +122,13 @@ bool HasIsamLines(std::string_view text) {
   return false;
 }
 
-// The 2x2 information of a landmark edge: g2o's upper triangle I11 I12 I22, or iSAM's
-// upper-triangular square root R = [sxx sxy; 0 syy], Omega = R^T R.
-Eigen::Matrix2d PointInformation(const LineParser& p, bool isam_sqrt) {
-  const double a = p.Number(5), b = p.Number(6), c = p.Number(7);
+// The 2x2 information of a landmark edge: g2o's upper triangle I11 I12 I22, or an iSAM-
+// family line's three values (slam/isam_noise.hpp). nullopt: not positive definite.
+std::optional<Eigen::Matrix2d> PointInformation(const LineParser& p, std::optional<IsamNoise> isam) {
+  const double v[3] = {p.Number(5), p.Number(6), p.Number(7)};
+  if (isam) return IsamPointInformation(v, *isam);
   Eigen::Matrix2d M;
-  M << a, b, 0.0, c;
-  if (isam_sqrt) return M.transpose() * M;
-  M(1, 0) = M(0, 1);
+  M << v[0], v[1], v[1], v[2];
   return M;
 }
 
@@ -146,21 +146,20 @@ void SplitWords(std::string_view line, std::vector<std::string>* words) {
 
 enum class EdgeFormat { kG2o, kToro, kIsam };
 
-// Information over (dx, dy, dtheta) from the file's six values in g2o, TORO or iSAM order.
-Eigen::Matrix3d Information(const LineParser& p, EdgeFormat format) {
+// Information over (dx, dy, dtheta) from the file's six values in g2o or TORO order, or an
+// iSAM-family line's (slam/isam_noise.hpp; nullopt: not positive definite).
+std::optional<Eigen::Matrix3d> Information(const LineParser& p, EdgeFormat format, IsamNoise isam_noise) {
   double xx, xy, xt, yy, yt, tt;
-  if (format == EdgeFormat::kIsam) {  // sxx sxy sxt syy syt stt: square root R, Omega = R^T R
-    // Values read before the comma initializer: a throw inside one trips its destructor's assert.
-    xx = p.Number(6), xy = p.Number(7), xt = p.Number(8), yy = p.Number(9), yt = p.Number(10), tt = p.Number(11);
-    Eigen::Matrix3d R;
-    R << xx, xy, xt, 0.0, yy, yt, 0.0, 0.0, tt;
-    return R.transpose() * R;
+  if (format == EdgeFormat::kIsam) {  // xx xy xt yy yt tt
+    const double v[6] = {p.Number(6), p.Number(7), p.Number(8), p.Number(9), p.Number(10), p.Number(11)};
+    return IsamPoseInformation(v, isam_noise);
   }
   if (format == EdgeFormat::kToro) {  // inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr
     xx = p.Number(6), xy = p.Number(7), yy = p.Number(8), tt = p.Number(9), xt = p.Number(10), yt = p.Number(11);
   } else {  // I11 I12 I13 I22 I23 I33
     xx = p.Number(6), xy = p.Number(7), xt = p.Number(8), yy = p.Number(9), yt = p.Number(10), tt = p.Number(11);
   }
+  // Values read before the comma initializer: a throw inside one trips its destructor's assert.
   Eigen::Matrix3d I;
   I << xx, xy, xt, xy, yy, yt, xt, yt, tt;
   return I;
@@ -168,13 +167,16 @@ Eigen::Matrix3d Information(const LineParser& p, EdgeFormat format) {
 
 }  // namespace
 
-PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
+PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name, const PoseGraphReadOptions& options) {
   std::map<long long, RawVertex> vertices;
   std::vector<RawEdge> edges;
   std::vector<std::pair<long long, int>> fixed_ids;
   // iSAM files (any ODOMETRY or LANDMARK line, wherever it is) give square-root
   // information, also on their EDGE2 lines (iSAM's loader reads EDGE2 as ODOMETRY).
   const bool isam = HasIsamLines(text);
+  const std::optional<IsamNoise> isam_noise = ResolveIsamNoise(text, name, options.isam_noise, isam);
+  const IsamNoise noise = isam_noise.value_or(IsamNoise::kSqrtInformation);
+  const bool covariance = noise == IsamNoise::kCovariance;
   std::vector<RawLandmarkEdge> landmark_edges;
   std::map<long long, int> isam_landmarks;  // iSAM landmark id -> first line naming it
   int line = 0;
@@ -202,20 +204,26 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
       else v.pose = SE2(p.Coordinate(2), p.Coordinate(3), p.Angle(4));
       vertices[id] = v;
     } else if (tag == "EDGE_SE2_XY" || tag == "LANDMARK") {
-      const bool sqrt_info = tag == "LANDMARK";
-      p.ExpectCount(8, tag + " pose_id point_id dx dy " + (sqrt_info ? "sxx sxy syy" : "I11 I12 I22"));
+      const bool sqrt_info = tag == "LANDMARK";  // iSAM's namespace and noise convention
+      p.ExpectCount(8, tag + " pose_id point_id dx dy " +
+                           (!sqrt_info ? "I11 I12 I22" : covariance ? "cxx cxy cyy" : "sxx sxy syy"));
       RawLandmarkEdge e;
       e.pose = p.Id(1);
       e.landmark = p.Id(2);
       e.line = line;
       e.isam = sqrt_info;
       e.edge.p_pose_landmark = Eigen::Vector2d(p.Coordinate(3), p.Coordinate(4));
-      e.edge.information = PointInformation(p, sqrt_info);
+      const std::optional<Eigen::Matrix2d> information =
+          PointInformation(p, sqrt_info ? std::optional<IsamNoise>(noise) : std::nullopt);
       Eigen::Matrix2d U;
-      if (!SqrtInformation(e.edge.information, &U))
-        throw InputError(name, line, "landmark edge information matrix is not positive definite",
-                         sqrt_info ? "give an upper-triangular square-root information (sxx sxy syy) with a nonzero diagonal"
-                                   : "give the upper triangle of a positive definite 2x2 information (I11 I12 I22)");
+      if (!information || !SqrtInformation(*information, &U))
+        throw InputError(name, line,
+                         std::string("landmark edge ") + (sqrt_info && covariance ? "covariance" : "information") +
+                             " matrix is not positive definite",
+                         !sqrt_info   ? "give the upper triangle of a positive definite 2x2 information (I11 I12 I22)"
+                         : covariance ? "give the upper triangle of a positive definite covariance (cxx cxy cyy)"
+                                      : "give an upper-triangular square-root information (sxx sxy syy) with a nonzero diagonal");
+      e.edge.information = *information;
       if (sqrt_info) isam_landmarks.emplace(e.landmark, line);
       landmark_edges.push_back(e);
     } else if (tag == "EDGE_SE2" || tag == "EDGE2" || tag == "ODOMETRY") {
@@ -224,6 +232,7 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
                                                               : EdgeFormat::kToro;
       const std::string values = format == EdgeFormat::kG2o    ? "I11 I12 I13 I22 I23 I33"
                                  : format == EdgeFormat::kToro ? "inf_ff inf_fs inf_ss inf_rr inf_fr inf_sr"
+                                 : covariance                  ? "cxx cxy cxt cyy cyt ctt"
                                                                : "sxx sxy sxt syy syt stt";
       p.ExpectCount(12, tag + " i j dx dy dtheta " + values);
       RawEdge e;
@@ -234,13 +243,16 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
         throw InputError(name, line, "edge joins vertex " + std::to_string(e.from) + " to itself",
                          "remove the line or fix its ids");
       e.edge.T_from_to = SE2(p.Coordinate(3), p.Coordinate(4), p.Angle(5));
-      e.edge.information = Information(p, format);
+      const std::optional<Eigen::Matrix3d> information = Information(p, format, noise);
       Eigen::Matrix3d U;
-      if (!SqrtInformation(e.edge.information, &U))
-        throw InputError(name, line, "edge information matrix is not positive definite",
-                         format == EdgeFormat::kIsam
+      const bool cov = format == EdgeFormat::kIsam && covariance;
+      if (!information || !SqrtInformation(*information, &U))
+        throw InputError(name, line, std::string("edge ") + (cov ? "covariance" : "information") + " matrix is not positive definite",
+                         cov ? "give the upper triangle of a positive definite covariance (" + values + ")"
+                         : format == EdgeFormat::kIsam
                              ? "give an upper-triangular square-root information (" + values + ") with a nonzero diagonal"
                              : "give the upper triangle of a positive definite information matrix (" + values + ")");
+      e.edge.information = *information;
       edges.push_back(e);
     } else if (tag == "FIX") {
       if (tokens.size() < 2) throw InputError(name, line, "FIX names no vertex", "write 'FIX id'");
@@ -259,6 +271,7 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
                        "write landmarks in one format: g2o's (shared ids with poses) or iSAM's (own ids)");
 
   PoseGraphFile file;
+  file.isam_noise = isam_noise;
   file.has_initial_guess = !vertices.empty() && isam_landmarks.empty();
   if (vertices.empty()) {  // edges only: vertices are whatever the edges name, of the kind they name
     for (const RawEdge& e : edges) {
@@ -330,12 +343,12 @@ PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name) {
   return file;
 }
 
-PoseGraphFile ReadPoseGraph(const std::string& path) {
+PoseGraphFile ReadPoseGraph(const std::string& path, const PoseGraphReadOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open the pose graph file", "check the path and permissions");
   std::ostringstream text;
   text << in.rdbuf();
-  return ParsePoseGraph(text.str(), path);
+  return ParsePoseGraph(text.str(), path, options);
 }
 
 namespace {

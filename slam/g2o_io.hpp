@@ -9,11 +9,14 @@
 //    root R of the information, Omega = R^T R, and `LANDMARK pose_id landmark_id dx dy sxx
 //    sxy syy` (R = [sxx sxy; 0 syy]; landmark ids are their own namespace). In a file with
 //    any ODOMETRY or LANDMARK line (anywhere in it) EDGE2 lines are iSAM's, as iSAM's loader
-//    reads them.
+//    reads them. GTSAM's datasets use the same tags with the upper triangle of the
+//    covariance instead (slam/isam_noise.hpp: which one a file holds, decided per file).
 // '#' starts a comment line.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "slam/isam_noise.hpp"
 #include "slam/pose_graph.hpp"
 
 namespace slambox {
@@ -27,6 +30,13 @@ struct PoseGraphFile {
   std::vector<int> landmark_ids;
   /// Every pose and landmark had a VERTEX line (else poses are identity, landmarks zero).
   bool has_initial_guess = false;
+  /// How the iSAM-family lines' noise was read (kSqrtInformation or kCovariance); nullopt
+  /// when the file has none.
+  std::optional<IsamNoise> isam_noise;
+};
+
+struct PoseGraphReadOptions {
+  IsamNoise isam_noise = IsamNoise::kAuto;  ///< iSAM-family lines: decided from the file, or as given
 };
 
 /// Reads a g2o, TORO or iSAM 2D graph. Vertex ids may be sparse; edges-only files create
@@ -34,8 +44,8 @@ struct PoseGraphFile {
 /// pose indices. Throws InputError naming the file and line for a malformed line, a
 /// non-finite number, an unknown tag, an edge to an unknown vertex or one of the wrong kind
 /// (a pose end that is a point, ...), or a non-positive-definite information.
-PoseGraphFile ReadPoseGraph(const std::string& path);
-PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name);
+PoseGraphFile ReadPoseGraph(const std::string& path, const PoseGraphReadOptions& options = {});
+PoseGraphFile ParsePoseGraph(const std::string& text, const std::string& name, const PoseGraphReadOptions& options = {});
 
 /// Writes g2o (VERTEX_SE2, VERTEX_XY, FIX of the anchor, EDGE_SE2, EDGE_SE2_XY) with %.17g,
 /// so reading the output back yields bit-identical doubles. Atomic: the file is complete or
