@@ -42,15 +42,5 @@ bool LandmarkEdgeCost::Evaluate(double const* const* parameters, double* residua
   return true;
 }
 
-bool SqrtInformation(const Eigen::Matrix2d& information, Eigen::Matrix2d* sqrt_information) {
-  if (!information.allFinite()) return false;
-  if (!information.isApprox(information.transpose(), 1e-12)) return false;
-  Eigen::LLT<Eigen::Matrix2d> llt(information);
-  if (llt.info() != Eigen::Success) return false;
-  const Eigen::Matrix2d U = llt.matrixU();
-  if (!(U.diagonal().array() > 0.0).all()) return false;
-  *sqrt_information = U;
-  return true;
-}
 
 }  // namespace slambox

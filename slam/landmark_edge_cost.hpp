@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "slam/pose_graph_cost.hpp"  // SqrtInformation
+
 namespace slambox {
 
 /// Whitened residual r = U e with U^T U = Omega (upper-triangular U), so |r|^2 = e^T Omega e.
@@ -27,8 +29,5 @@ class LandmarkEdgeCost final : public ceres::SizedCostFunction<2, 3, 2> {
 /// The error e above for pose (t_i, theta_i) and landmark l_j.
 Eigen::Vector2d LandmarkEdgeError(const Eigen::Vector3d& pose, const Eigen::Vector2d& l_world, const Eigen::Vector2d& z);
 
-/// Upper-triangular U with U^T U = information; false unless it is finite, symmetric and
-/// positive definite.
-bool SqrtInformation(const Eigen::Matrix2d& information, Eigen::Matrix2d* sqrt_information);
 
 }  // namespace slambox

@@ -38,15 +38,5 @@ bool PoseGraphEdgeCost::Evaluate(double const* const* parameters, double* residu
   return true;
 }
 
-bool SqrtInformation(const Eigen::Matrix3d& information, Eigen::Matrix3d* sqrt_information) {
-  if (!information.allFinite()) return false;
-  if (!information.isApprox(information.transpose(), 1e-12)) return false;
-  Eigen::LLT<Eigen::Matrix3d> llt(information);
-  if (llt.info() != Eigen::Success) return false;
-  const Eigen::Matrix3d U = llt.matrixU();
-  if (!(U.diagonal().array() > 0.0).all()) return false;
-  *sqrt_information = U;
-  return true;
-}
 
 }  // namespace slambox

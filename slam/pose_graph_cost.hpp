@@ -3,7 +3,9 @@
 // error term), with analytic Jacobians.
 #include <ceres/sized_cost_function.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <type_traits>
 
 #include "core/se2.hpp"
 
@@ -23,8 +25,20 @@ class PoseGraphEdgeCost final : public ceres::SizedCostFunction<3, 3, 3> {
   Eigen::Matrix3d sqrt_information_;
 };
 
-/// Upper-triangular U with U^T U = information; returns false unless information is
-/// symmetric positive definite and finite.
-bool SqrtInformation(const Eigen::Matrix3d& information, Eigen::Matrix3d* sqrt_information);
+/// Upper-triangular U with U^T U = information (any square size: pose edges 3x3, landmark
+/// edges 2x2); returns false unless information is symmetric positive definite and finite.
+/// N comes from the output (the input may be an expression).
+template <int N>
+bool SqrtInformation(const std::type_identity_t<Eigen::Matrix<double, N, N>>& information,
+                     Eigen::Matrix<double, N, N>* sqrt_information) {
+  if (!information.allFinite()) return false;
+  if (!information.isApprox(information.transpose(), 1e-12)) return false;
+  const Eigen::LLT<Eigen::Matrix<double, N, N>> llt(information);
+  if (llt.info() != Eigen::Success) return false;
+  const Eigen::Matrix<double, N, N> U = llt.matrixU();
+  if (!(U.diagonal().array() > 0.0).all()) return false;
+  *sqrt_information = U;
+  return true;
+}
 
 }  // namespace slambox
