@@ -28,7 +28,7 @@
 namespace slambox {
 
 struct GraphSlamConfig {
-  int keyframe_every_odometry = 5;  ///< [steps] a scan makes a keyframe after this much odometry (0 = off)
+  int keyframe_every_odometry = 0;  ///< [steps] a scan makes a keyframe after this much odometry (0 = off; default: every scan)
   double keyframe_distance_m = 0.0; ///< [m] ... or after this much travel (0 = off); both off: every scan
   int solve_every_keyframes = 0;    ///< [keyframes] also solve during the run (0 = only at the end)
   int max_iterations = 50;          ///< [-] Ceres iterations per solve
