@@ -67,6 +67,8 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("detection_rate_bands", c.detection_rate_bands, "bands", "range bands of the detection probability estimate",
          AtLeast(1));
   b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
+  b.Bind("update_iterations", c.update_iterations, "-",
+         "iterated EKF: Gauss-Newton steps of each scan's update, relinearized at the iterate (1 = plain EKF)", AtLeast(1));
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance", Above(0));
   b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
 }
@@ -79,6 +81,8 @@ EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {
   if (!(config.merge_probability >= 0 && config.merge_probability < 1))
     fail("merge_probability", "must lie in [0, 1)", "e.g. 0.99, or 0 to never merge");
   if (!(config.tentative_max_age_s > 0)) fail("tentative_max_age_s", "must be positive", "e.g. 2");
+  if (config.fej && config.update_iterations > 1)
+    fail("update_iterations", "cannot relinearize with first-estimates Jacobians (fej=true)", "set fej=false or update_iterations=1");
 }
 
 void EkfSlam::Start(const StreamHeader& header) {
@@ -161,6 +165,7 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   // estimate, or for FEJ at the robot's prior and the landmark's first estimate.
   std::vector<int> keys(obs.size(), -1);
   std::vector<LinearizedObservation> lin;
+  std::vector<LandmarkMeasurement> measured;  // the same, for the iterated update (it linearizes itself)
   std::vector<bool> matched(tracks_.size(), false);
   const SE2 pose = state_.Pose();
   for (size_t i = 0; i < obs.size(); ++i) {
@@ -169,12 +174,15 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
     const ObservationPrediction p = PredictObservation(pose, state_.Landmark(j));
     const ObservationPrediction J = config_.fej ? PredictObservation(pose, tracks_[j].first_estimate) : p;
     lin.push_back({j, Innovation(z[i], p.z), J.J_z_pose, J.J_z_landmark});
+    measured.push_back({j, z[i]});
     matched[j] = true;
     keys[i] = tracks_[j].key;
     ++tracks_[j].sightings;
     ++tracks_[j].existence;
   }
-  const EkfUpdateResult update = UpdateState(state_, lin, R_);
+  const EkfUpdateResult update = config_.update_iterations > 1
+                                     ? IteratedUpdateState(state_, measured, R_, config_.update_iterations)
+                                     : UpdateState(state_, lin, R_);
   if (!update.applied && !lin.empty()) Record(event.t_s, "update_rejected", 1.0);
 
   int created = 0, discarded = 0;

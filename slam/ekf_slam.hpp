@@ -67,6 +67,7 @@ struct EkfSlamConfig {
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
+  int update_iterations = 1;            ///< [-] iterated EKF update: relinearizations per scan (1 = EKF; slam/ekf_slam_filter.hpp)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
 };

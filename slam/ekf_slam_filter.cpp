@@ -1,6 +1,8 @@
 #include "slam/ekf_slam_filter.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
+#include <utility>
 
 #include "slam/range_bearing.hpp"
 
@@ -74,37 +76,99 @@ Eigen::MatrixXd RightMultiplyHt(const std::vector<LinearizedObservation>& obs, c
 }
 }  // namespace
 
+namespace {
+/// The batch's gain at one linearization: C = H P, S = H P H^T + R (its Cholesky), K = P H^T S^-1.
+struct BatchGain {
+  Eigen::MatrixXd C, S, K;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+};
+
+bool ComputeGain(const EkfSlamState& s, const std::vector<LinearizedObservation>& obs, const Eigen::Matrix2d& R,
+                 BatchGain& g) {
+  const Eigen::Index k = 2 * static_cast<Eigen::Index>(obs.size());
+  g.C = LeftMultiplyH(obs, s.covariance);  // H P, k x n
+  g.S = RightMultiplyHt(obs, g.C);          // H P H^T
+  for (Eigen::Index j = 0; j < k; j += 2) g.S.block<2, 2>(j, j) += R;
+  g.S = 0.5 * (g.S + g.S.transpose()).eval();
+  g.llt.compute(g.S);
+  if (g.llt.info() != Eigen::Success) return false;
+  g.K = g.llt.solve(g.C).transpose();  // P H^T S^-1, n x k
+  return true;
+}
+
+Eigen::VectorXd StackedInnovations(const std::vector<LinearizedObservation>& obs) {
+  Eigen::VectorXd nu(2 * static_cast<Eigen::Index>(obs.size()));
+  for (size_t j = 0; j < obs.size(); ++j) nu.segment<2>(2 * j) = obs[j].innovation;
+  return nu;
+}
+
+// Joseph form P' = (I - K H) P (I - K H)^T + K R K^T, expanded (exact for any gain K):
+// P' = P - K C - C^T K^T + K S K^T = P + K E + E^T K^T with E = S K^T / 2 - C.
+// Only the lower triangle is computed (two triangular products, n^2 k flops each),
+// then mirrored: P' is exactly symmetric.
+void JosephUpdate(Eigen::MatrixXd& P, const BatchGain& g) {
+  const Eigen::MatrixXd E = 0.5 * g.S * g.K.transpose() - g.C;  // k x n
+  P.triangularView<Eigen::Lower>() += g.K * E;
+  P.triangularView<Eigen::Lower>() += E.transpose() * g.K.transpose();
+  P.triangularView<Eigen::StrictlyUpper>() = P.transpose();
+}
+}  // namespace
+
 EkfUpdateResult UpdateState(EkfSlamState& s, const std::vector<LinearizedObservation>& obs,
                             const Eigen::Matrix2d& R) {
   EkfUpdateResult result;
   if (obs.empty()) return result;
-  const Eigen::Index k = 2 * static_cast<Eigen::Index>(obs.size());
-  Eigen::VectorXd nu(k);
-  for (size_t j = 0; j < obs.size(); ++j) nu.segment<2>(2 * j) = obs[j].innovation;
-
-  const Eigen::MatrixXd C = LeftMultiplyH(obs, s.covariance);  // H P, k x n
-  Eigen::MatrixXd S = RightMultiplyHt(obs, C);                  // H P H^T
-  for (Eigen::Index j = 0; j < k; j += 2) S.block<2, 2>(j, j) += R;
-  S = 0.5 * (S + S.transpose()).eval();
-  const Eigen::LLT<Eigen::MatrixXd> llt(S);
-  if (llt.info() != Eigen::Success) return result;
-  const Eigen::MatrixXd K = llt.solve(C).transpose();  // P H^T S^-1, n x k
-
+  BatchGain g;
+  if (!ComputeGain(s, obs, R, g)) return result;
+  const Eigen::VectorXd nu = StackedInnovations(obs);
   result.applied = true;
-  result.dof = static_cast<int>(k);
-  result.nis = nu.dot(llt.solve(nu));
-  s.mean.noalias() += K * nu;
+  result.dof = static_cast<int>(nu.size());
+  result.nis = nu.dot(g.llt.solve(nu));
+  s.mean.noalias() += g.K * nu;
   s.mean(2) = NormalizeAngle(s.mean(2));
+  JosephUpdate(s.covariance, g);
+  return result;
+}
 
-  // Joseph form P' = (I - K H) P (I - K H)^T + K R K^T, expanded (exact for any gain K):
-  // P' = P - K C - C^T K^T + K S K^T = P + K E + E^T K^T with E = S K^T / 2 - C.
-  // Only the lower triangle is computed (two triangular products, n^2 k flops each),
-  // then mirrored: P' is exactly symmetric.
-  Eigen::MatrixXd& P = s.covariance;
-  const Eigen::MatrixXd E = 0.5 * S * K.transpose() - C;  // k x n
-  P.triangularView<Eigen::Lower>() += K * E;
-  P.triangularView<Eigen::Lower>() += E.transpose() * K.transpose();
-  P.triangularView<Eigen::StrictlyUpper>() = P.transpose();
+EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkMeasurement>& m,
+                                    const Eigen::Matrix2d& R, int iterations) {
+  EkfUpdateResult result;
+  if (m.empty()) return result;
+  const Eigen::VectorXd prior = s.mean;
+  Eigen::VectorXd x = prior;  // the iterate x_i
+  std::vector<LinearizedObservation> lin(m.size());
+  BatchGain g;
+  for (int i = 0; i < std::max(1, iterations); ++i) {
+    const SE2 pose{x(0), x(1), x(2)};
+    // d = x̂ - x_i on the robot and on each measured landmark (heading wrapped).
+    Eigen::Vector3d d_pose = prior.head<3>() - x.head<3>();
+    d_pose(2) = NormalizeAngle(d_pose(2));
+    for (size_t j = 0; j < m.size(); ++j) {
+      const Eigen::Index a = 3 + 2 * m[j].landmark;
+      const ObservationPrediction p = PredictObservation(pose, x.segment<2>(a));
+      lin[j] = {m[j].landmark, Innovation(m[j].z, p.z), p.J_z_pose, p.J_z_landmark};
+      if (i > 0) lin[j].innovation -= p.J_z_pose * d_pose + p.J_z_landmark * (prior.segment<2>(a) - x.segment<2>(a));
+    }
+    BatchGain trial;
+    if (!ComputeGain(s, lin, R, trial)) {
+      if (i == 0) return result;  // not positive definite at the prior: nothing applied
+      break;                      // keep the last iterate and its gain
+    }
+    std::swap(g, trial);
+    const Eigen::VectorXd nu = StackedInnovations(lin);
+    if (i == 0) result.nis = nu.dot(g.llt.solve(nu));
+    Eigen::VectorXd next = prior;
+    next.noalias() += g.K * nu;
+    next(2) = NormalizeAngle(next(2));
+    Eigen::VectorXd step = next - x;
+    step(2) = NormalizeAngle(step(2));
+    x = next;
+    if (step.lpNorm<Eigen::Infinity>() < 1e-9) break;
+  }
+  result.applied = true;
+  result.dof = 2 * static_cast<int>(m.size());
+  s.mean = x;
+  JosephUpdate(s.covariance, g);
   return result;
 }
 

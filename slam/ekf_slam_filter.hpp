@@ -61,4 +61,20 @@ struct EkfUpdateResult {
 EkfUpdateResult UpdateState(EkfSlamState& state, const std::vector<LinearizedObservation>& observations,
                             const Eigen::Matrix2d& R);
 
+/// One range-bearing measurement z of landmark `landmark` (the iterated update linearizes it itself).
+struct LandmarkMeasurement {
+  int landmark = 0;
+  Eigen::Vector2d z = Eigen::Vector2d::Zero();
+};
+
+/// Iterated EKF update (Bell & Cathey 1993; Bar-Shalom et al. 2001, sec. 10.5.2): Gauss-Newton
+/// on the posterior of the prior N(x̂, P) and the batch's likelihood, relinearizing h at each
+/// iterate x_i (x_0 = x̂):
+///   x_{i+1} = x̂ + K_i (z - h(x_i) - H_i (x̂ - x_i)),  K_i = P H_i^T (H_i P H_i^T + R)^-1,
+/// bearings and the heading difference wrapped, until a step moves the state less than 1e-9
+/// (m, rad) or `iterations` are done; P' in Joseph form with the last K_i and H_i. The NIS is
+/// the one at x̂ (the filter's consistency). iterations = 1 is UpdateState at x̂, bit for bit.
+EkfUpdateResult IteratedUpdateState(EkfSlamState& state, const std::vector<LandmarkMeasurement>& measurements,
+                                    const Eigen::Matrix2d& R, int iterations);
+
 }  // namespace slambox
