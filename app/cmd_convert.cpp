@@ -4,7 +4,6 @@
 // (datasets/laser_log.hpp); rawlogs are read by the MRPT plugin (app/rawlog_format.hpp).
 #include <array>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <sstream>
 
@@ -117,13 +116,7 @@ void AddConvertCommand(CLI::App& app) {
   carmen
       ->add_option("--out-of-order", r->carmen.out_of_order,
                    "a message stamped over 5 s before the log's clock so far: error (default) or drop it")
-      ->transform(CLI::CheckedTransformer(
-          [] {
-            std::map<std::string, CarmenOutOfOrder> m;
-            for (const auto& [value, name] : CarmenOutOfOrderNames()) m[name] = value;
-            return m;
-          }(),
-          CLI::ignore_case))
+      ->transform(EnumTransformer(CarmenOutOfOrderNames()))
       ->default_str("error");
   carmen->callback([r] { ConvertCarmen(*r); });
   CLI::App* rawlog = cmd->add_subcommand(
