@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "core/error.hpp"
+#include "core/limits.hpp"
 #include "datasets/odometry_noise_fit.hpp"
 
 namespace slambox {
@@ -26,6 +28,12 @@ Stream AssembleLandmarkLog(const LandmarkLog& log, const std::string& name, cons
                      "check --pose-period-s / --fov-deg");
   if (log.increments.empty()) throw InputError(name, 0, "no odometry step", "the poses must form one chain 0, 1, 2, ...");
   const int last = static_cast<int>(log.increments.size());
+  if (last * o.pose_period_s > limits::kMaxTimestampS) {
+    std::ostringstream problem;
+    problem << last << " steps of " << o.pose_period_s << " s end past the limit of " << limits::kMaxTimestampS
+            << " s (core/limits.hpp)";
+    throw InputError(name, 0, problem.str(), "give a smaller --pose-period-s");
+  }
   if (!log.true_poses.empty() && log.true_poses.size() != log.increments.size() + 1)
     throw InputError(name, 0,
                      "ground truth for " + std::to_string(log.true_poses.size()) + " poses, the chain has " +
@@ -38,6 +46,9 @@ Stream AssembleLandmarkLog(const LandmarkLog& log, const std::string& name, cons
     if (s.pose < 0 || s.pose > last)
       throw InputError(name, 0, "a sighting names pose " + std::to_string(s.pose) + " outside the chain 0 .. " + std::to_string(last),
                        "check the pose indices");
+    if (s.landmark < 0)
+      throw InputError(name, 0, "a sighting from pose " + std::to_string(s.pose) + " names landmark id " +
+                                    std::to_string(s.landmark), "landmark ids are >= 0 (a negative id means unknown in a stream)");
     const double x = s.point.x(), y = s.point.y(), r = std::hypot(x, y);
     if (!(r > 0)) throw InputError(name, 0, "a sighting from pose " + std::to_string(s.pose) + " at zero range", "remove it");
     observed[s.pose].push_back({r, std::atan2(y, x), s.landmark});

@@ -39,8 +39,8 @@ struct LandmarkLogOptions {
   double pose_period_s = 0.2;  ///< [s] time between consecutive poses
   double fov_deg = 360.0;      ///< the detector's field of view, centred ahead (header only)
   /// Thrun's odometry noise; empty: fitted to the per-step covariances.
-  std::optional<std::array<double, 4>> odometry_alpha;
-  std::string description;  ///< what the data is (the header's scenario comment)
+  std::optional<std::array<double, 4>> odometry_alpha = std::nullopt;
+  std::string description = {};  ///< what the data is (the header's scenario comment)
 };
 
 /// Throws InputError naming `name` for bad options, a sighting at zero range or of a pose
