@@ -1,19 +1,23 @@
-// `slambox convert carmen LOG -o STREAM` (and `victoria-park`, `rawlog`): a real log into a
-// stream file, which `slambox run` replays like a simulated one (without ground truth, so
-// pose metrics are null). CARMEN logs and MRPT rawlogs become streams the same way
-// (datasets/laser_log.hpp); rawlogs are read by the MRPT plugin (app/rawlog_format.hpp).
+// `slambox convert carmen LOG -o STREAM` (and `victoria-park`, `rawlog`, `graph`): a real log
+// into a stream file, which `slambox run` replays like a simulated one (without ground truth,
+// so pose metrics are null, unless a graph's --groundtruth gives it). CARMEN logs and MRPT
+// rawlogs become streams the same way (datasets/laser_log.hpp); rawlogs are read by the MRPT
+// plugin (app/rawlog_format.hpp). Victoria Park and pose-landmark graphs share
+// datasets/landmark_log.hpp; a graph's chain is taken apart in app/graph_log.hpp.
 #include <array>
+#include <cmath>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/graph_log.hpp"
 #include "app/rawlog_format.hpp"
 #include "core/error.hpp"
 #include "core/stream_io.hpp"
 #include "datasets/carmen_log.hpp"
 #include "datasets/laser_log.hpp"
+#include "datasets/landmark_log.hpp"
 #include "datasets/victoria_park.hpp"
 
 namespace slambox {
@@ -25,6 +29,8 @@ struct ConvertRequest {
   CarmenImportOptions carmen;
   LaserLogOptions rawlog;
   VictoriaParkImportOptions victoria;
+  GraphLogOptions graph_read;
+  LandmarkLogOptions graph{.pose_period_s = 1.0, .fov_deg = 360.0};
   std::vector<double> alpha;
 };
 
@@ -32,6 +38,10 @@ std::array<double, 4> Alpha(const std::vector<double>& given, std::array<double,
   if (given.empty()) return fallback;
   if (given.size() != 4)
     throw InputError("--odometry-alpha", 0, "expected 4 values", "write e.g. --odometry-alpha 0.05,0.005,0.05,0.005");
+  for (const double a : given)
+    if (!(a >= 0 && std::isfinite(a)))
+      throw InputError("--odometry-alpha", 0, "value " + std::to_string(a) + " is not a finite number >= 0",
+                       "write e.g. --odometry-alpha 0.05,0.005,0.05,0.005");
   return {given[0], given[1], given[2], given[3]};
 }
 
@@ -91,6 +101,30 @@ void ConvertCarmen(const ConvertRequest& r) {
   ReportLaserLog(r, s);
 }
 
+// A pose-landmark graph whose poses form one odometry chain (app/graph_log.hpp).
+void ConvertGraph(const ConvertRequest& r) {
+  const GraphLog g = ReadGraphLog(r.input, r.graph_read);
+  const GraphLogReport& report = g.report;
+  LandmarkLogOptions options = r.graph;
+  if (!r.alpha.empty()) options.odometry_alpha = Alpha(r.alpha, {});
+  options.description = report.isam_noise
+                            ? std::string("the ") + NameOf(IsamNoiseNames(), *report.isam_noise) + "-noise graph"
+                            : std::string("the g2o graph");
+  const Stream s = AssembleLandmarkLog(g.log, r.input, options);
+  WriteStream(s, r.output);
+  const LandmarkSensorConfig& lm = *s.header.sensors.landmarks;
+  std::ostringstream line;
+  line << "converted " << r.input << ": " << report.odometry_steps << " odometry steps";
+  if (report.reversed_steps > 0) line << " (" << report.reversed_steps << " stated backwards, inverted)";
+  line << ", " << report.sightings << " landmark sightings of " << report.landmarks
+       << " landmarks (known ids; median sigma_range " << lm.sigma_range_m << " m, sigma_bearing " << lm.sigma_bearing_deg
+       << " deg)";
+  if (report.isam_noise) line << ", noise read as " << NameOf(IsamNoiseNames(), *report.isam_noise);
+  if (report.off_chain_edges > 0) line << ", " << report.off_chain_edges << " pose edges off the odometry chain left out";
+  line << (g.log.true_poses.empty() ? ", no ground truth" : ", with ground truth") << " -> " << r.output;
+  std::cerr << line.str() << "\n";
+}
+
 void ConvertRawlog(const ConvertRequest& r) {
   LaserLogOptions o = r.rawlog;
   o.odometry_alpha = Alpha(r.alpha, o.odometry_alpha);
@@ -117,13 +151,7 @@ void AddConvertCommand(CLI::App& app) {
   carmen
       ->add_option("--out-of-order", r->carmen.out_of_order,
                    "a message stamped over 5 s before the log's clock so far: error (default) or drop it")
-      ->transform(CLI::CheckedTransformer(
-          [] {
-            std::map<std::string, CarmenOutOfOrder> m;
-            for (const auto& [value, name] : CarmenOutOfOrderNames()) m[name] = value;
-            return m;
-          }(),
-          CLI::ignore_case))
+      ->transform(EnumTransformer(CarmenOutOfOrderNames()))
       ->default_str("error");
   carmen->callback([r] { ConvertCarmen(*r); });
   CLI::App* rawlog = cmd->add_subcommand(
@@ -135,6 +163,24 @@ void AddConvertCommand(CLI::App& app) {
   rawlog->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (Thrun's model; default 0.05,0.005,0.05,0.005)")
       ->delimiter(',');
   rawlog->callback([r] { ConvertRawlog(*r); });
+  CLI::App* graph = cmd->add_subcommand(
+      "graph", "pose-landmark graph (iSAM / GTSAM LANDMARK, g2o EDGE_SE2_XY) whose poses form one odometry chain");
+  graph->add_option("graph", r->input, "graph file (slambox optimize reads the same formats)")->required();
+  graph->add_option("-o,--output", r->output, "stream file to write")->required();
+  graph->add_option("--groundtruth", r->graph_read.groundtruth,
+                    "true poses ('id x y theta') and/or landmarks ('id x y'), or g2o/TORO vertex lines; may be given twice")
+      ->check(CLI::ExistingFile);
+  graph->add_option("--pose-period-s", r->graph.pose_period_s, "time between poses; graphs have none (default 1)");
+  graph->add_option("--fov-deg", r->graph.fov_deg, "the detector's field of view, header only (default 360)");
+  graph
+      ->add_option("--noise", r->graph_read.noise,
+                   "ODOMETRY / LANDMARK values, as `slambox optimize --noise`: sqrt-information (iSAM), covariance "
+                   "(GTSAM), or auto: decided from the file")
+      ->transform(EnumTransformer(IsamNoiseNames()))
+      ->default_str("auto");
+  graph->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (default: fitted to the edges' covariances)")
+      ->delimiter(',');
+  graph->callback([r] { ConvertGraph(*r); });
   CLI::App* vp = cmd->add_subcommand("victoria-park", "Victoria Park, preprocessed (VicPark_clean_data.txt): odometry + tree observations, known ids");
   vp->add_option("data", r->input, "VicPark_clean_data.txt (optionally .gz/.bz2)")->required();
   vp->add_option("-o,--output", r->output, "stream file to write")->required();

@@ -245,14 +245,7 @@ void AddOptimizeCommand(CLI::App& app) {
   cmd->add_option("--noise", args->noise,
                   "ODOMETRY / LANDMARK (and their EDGE2) values: sqrt-information (iSAM), covariance (GTSAM's "
                   "datasets), or auto: decided from the file's diagonal values (>= 1 iSAM's, <= 1 covariances)")
-      ->transform(CLI::CheckedTransformer(
-                      [] {
-                        std::map<std::string, IsamNoise> m;
-                        for (const auto& [value, name] : IsamNoiseNames()) m[name] = value;
-                        return m;
-                      }(),
-                      CLI::ignore_case)
-                      .description("{auto,sqrt-information,covariance}"))
+      ->transform(EnumTransformer(IsamNoiseNames()))
       ->default_str("auto");
   cmd->add_flag("--json", args->json, "print one JSON object instead of text");
   cmd->callback([args]() { RunOptimize(*args); });

@@ -11,31 +11,17 @@
 #include "core/error.hpp"
 #include "core/limits.hpp"
 #include "datasets/compressed_file.hpp"
-#include "datasets/odometry_noise_fit.hpp"
+#include "datasets/landmark_log.hpp"
 
 namespace slambox {
-
-namespace {
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
-  return v[mid];
-}
-
-}  // namespace
 
 Stream ParseVictoriaPark(const std::string& text, const std::string& name, const VictoriaParkImportOptions& o) {
   if (!(o.pose_period_s > 0) || !(o.fov_deg > 0 && o.fov_deg <= 360))
     throw InputError(name, 0, "invalid import options (pose_period_s > 0, 0 < fov_deg <= 360)",
                      "check --pose-period-s / --fov-deg");
-  std::map<int, SE2> odometry;                                // end pose -> increment
-  std::vector<SE2> increments;
-  std::vector<Eigen::Matrix3d> increment_covariances;
-  std::map<int, std::vector<LandmarkObservation>> observed;  // pose -> observations
-  std::vector<double> sigma_range, sigma_bearing;
-  double range_max = 0.0;
+  std::map<int, std::pair<SE2, Eigen::Matrix3d>> odometry;  // end pose -> increment, covariance
+  LandmarkLog log;
+  int last_observed = -1;
   std::istringstream in(text);
   std::string line;
   int line_number = 0;
@@ -65,25 +51,17 @@ Stream ParseVictoriaPark(const std::string& text, const std::string& name, const
     if (v[0] == 1) {
       const int i = index(v[1], "the start pose index"), j = index(v[2], "the end pose index");
       if (j != i + 1) fail("odometry must join consecutive poses (i, i + 1), got " + std::to_string(i) + " -> " + std::to_string(j));
-      if (!odometry.emplace(j, SE2(v[3], v[4], v[5])).second) fail("a second odometry row ends at pose " + std::to_string(j));
-      increments.push_back(SE2(v[3], v[4], v[5]));
       Eigen::Matrix3d P;
       P << v[6], v[7], v[8], v[7], v[9], v[10], v[8], v[10], v[11];
-      increment_covariances.push_back(P);
+      if (!odometry.emplace(j, std::pair{SE2(v[3], v[4], v[5]), P}).second)
+        fail("a second odometry row ends at pose " + std::to_string(j));
     } else if (v[0] == 0) {
       const int k = index(v[1], "the pose index"), f = index(v[2], "the feature index");
-      const double x = v[3], y = v[4], r = std::hypot(x, y);
-      if (!(r > 0)) fail("an observation at zero range");
-      observed[k].push_back({r, std::atan2(y, x), f});
-      range_max = std::max(range_max, r);
-      // Polar covariance J P J^T with J = d(r, b)/d(x, y) = [[x, y] / r; [-y, x] / r^2].
+      if (!(std::hypot(v[3], v[4]) > 0)) fail("an observation at zero range");
       Eigen::Matrix2d P;
       P << v[5], v[6], v[6], v[7];
-      Eigen::Matrix2d J;
-      J << x / r, y / r, -y / (r * r), x / (r * r);
-      const Eigen::Matrix2d polar = J * P * J.transpose();
-      sigma_range.push_back(std::sqrt(std::max(0.0, polar(0, 0))));
-      sigma_bearing.push_back(std::sqrt(std::max(0.0, polar(1, 1))));
+      log.sightings.push_back({k, f, Eigen::Vector2d(v[3], v[4]), P});
+      last_observed = std::max(last_observed, k);
     } else {
       fail("the first field must be 1 (odometry) or 0 (observation)");
     }
@@ -92,32 +70,16 @@ Stream ParseVictoriaPark(const std::string& text, const std::string& name, const
   const int last = odometry.rbegin()->first;
   for (int k = 1; k <= last; ++k)
     if (!odometry.count(k)) throw InputError(name, 0, "no odometry row ends at pose " + std::to_string(k), "the poses must form one chain 0, 1, 2, ...");
-  if (!observed.empty() && observed.rbegin()->first > last)
-    throw InputError(name, 0, "an observation names pose " + std::to_string(observed.rbegin()->first) + " beyond the last (" + std::to_string(last) + ")",
+  if (last_observed > last)
+    throw InputError(name, 0, "an observation names pose " + std::to_string(last_observed) + " beyond the last (" + std::to_string(last) + ")",
                      "check the pose indices");
-
-  Stream s;
-  s.header.scenario_name = std::filesystem::path(name).filename().string();
-  s.header.scenario_yaml = "# converted from the Victoria Park data " + s.header.scenario_name + " (no ground truth)\n";
-  s.header.dt_s = o.pose_period_s;
-  for (int k = 0; k <= last; ++k) {
-    const double t = k * o.pose_period_s;
-    if (k > 0) s.events.push_back(OdometryEvent{t, odometry.at(k)});
-    if (auto it = observed.find(k); it != observed.end()) s.events.push_back(LandmarkEvent{t, it->second});
+  for (const auto& [end, step] : odometry) {  // the chain in pose order, whatever the rows' order
+    log.increments.push_back(step.first);
+    log.increment_covariances.push_back(step.second);
   }
-  s.header.duration_s = last * o.pose_period_s;
-  OdometryConfig odo;
-  odo.rate_hz = 1.0 / o.pose_period_s;
-  odo.alpha = o.odometry_alpha ? *o.odometry_alpha : FitOdometryAlpha(increments, increment_covariances).alpha;
-  LandmarkSensorConfig lm;
-  lm.rate_hz = 1.0 / o.pose_period_s;
-  lm.range_max_m = std::ceil(range_max);
-  lm.fov_deg = o.fov_deg;
-  lm.sigma_range_m = Median(sigma_range);
-  lm.sigma_bearing_deg = Median(sigma_bearing) * 180.0 / M_PI;
-  lm.known_ids = true;
-  s.header.sensors.odometry = odo;
-  s.header.sensors.landmarks = lm;
+  LandmarkLogOptions options{.pose_period_s = o.pose_period_s, .fov_deg = o.fov_deg, .odometry_alpha = o.odometry_alpha,
+                             .description = "the Victoria Park data"};
+  Stream s = AssembleLandmarkLog(log, name, options);
   return s;
 }
 

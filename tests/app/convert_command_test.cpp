@@ -249,3 +249,61 @@ TEST(Convert, EkfSlamMapsVictoriaParkWhenPresent) {
 }
 
 }  // namespace
+
+namespace {
+
+// `convert graph` end to end: a noise-free three-pose iSAM graph with its ground truth
+// replays through `run` with pose metrics (dead reckoning is exact on it), the report line
+// counts what was left out, and bad graphs exit non-zero naming the file and line.
+TEST(Convert, GraphWithGroundTruthReplaysThroughRun) {
+  const fs::path dir = TempDir("graph");
+  std::ofstream(dir / "g.txt") << "ODOMETRY 0 1 1 0 0 10 0 0 10 0 20\n"
+                                  "ODOMETRY 2 1 0 1 -1.5707963267948966 10 0 0 10 0 20\n"  // 1 -> 2, stated backwards
+                                  "ODOMETRY 0 2 2 0 1.5707963267948966 10 0 0 10 0 20\n"   // a loop closure
+                                  "LANDMARK 0 7 3 4 10 0 10\nLANDMARK 1 8 0 2 10 0 10\nLANDMARK 2 7 4 -1 10 0 10\n";
+  std::ofstream(dir / "poses.txt") << "0 0 0 0\n1 1 0 0\n2 2 0 1.5707963267948966\n";
+  std::ofstream(dir / "trees.txt") << "7 3 4\n8 1 2\n";
+  const std::string stream = (dir / "g.stream").string();
+  const Result c = Slambox("convert graph " + (dir / "g.txt").string() + " -o " + stream + " --groundtruth " +
+                           (dir / "poses.txt").string() + " --groundtruth " + (dir / "trees.txt").string());
+  ASSERT_EQ(c.code, 0) << c.output;
+  for (const char* part : {"2 odometry steps (1 stated backwards, inverted)", "3 landmark sightings of 2 landmarks",
+                           "noise read as sqrt-information", "1 pose edges off the odometry chain left out",
+                           "with ground truth"})
+    EXPECT_NE(c.output.find(part), std::string::npos) << part << "\n" << c.output;
+  const Result r = Slambox("run " + stream + " --algo odometry,ekf-slam --no-figures -q -o " + (dir / "run").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const json algorithms = ReadJson(dir / "run" / "metrics.json").at("algorithms");
+  for (const char* name : {"odometry", "ekf-slam"}) {
+    const json& a = algorithms.at(name);
+    EXPECT_EQ(a.at("status"), "ok") << a.dump();
+    ASSERT_TRUE(a.at("ate_rmse_m").is_number()) << a.dump();
+    EXPECT_LT(a.at("ate_rmse_m").get<double>(), 1e-6) << name;
+  }
+  EXPECT_TRUE(algorithms.at("ekf-slam").at("landmark_rmse_m").is_number());
+
+  std::ofstream(dir / "nan.txt") << "ODOMETRY 0 1 1 0 0 10 0 0 10 0 20\nLANDMARK 1 0 nan 0 10 0 10\n";
+  const Result nan = Slambox("convert graph " + (dir / "nan.txt").string() + " -o " + (dir / "x.stream").string());
+  EXPECT_NE(nan.code, 0);
+  EXPECT_NE(nan.output.find("nan.txt:2"), std::string::npos) << nan.output;
+  std::ofstream(dir / "pose_only.txt") << "ODOMETRY 0 1 1 0 0 10 0 0 10 0 20\n";
+  const Result pose_only = Slambox("convert graph " + (dir / "pose_only.txt").string() + " -o " + (dir / "x.stream").string());
+  EXPECT_NE(pose_only.code, 0);
+  EXPECT_NE(pose_only.output.find("no landmark edge"), std::string::npos) << pose_only.output;
+  std::ofstream(dir / "short.txt") << "0 0 0 0\n1 1 0 0\n";
+  const Result short_truth = Slambox("convert graph " + (dir / "g.txt").string() + " -o " + (dir / "x.stream").string() +
+                                     " --groundtruth " + (dir / "short.txt").string());
+  EXPECT_NE(short_truth.code, 0);
+  EXPECT_NE(short_truth.output.find("short.txt: no true pose for pose id 2"), std::string::npos) << short_truth.output;
+  const Result period = Slambox("convert graph " + (dir / "g.txt").string() + " -o " + (dir / "x.stream").string() +
+                                " --pose-period-s 0");
+  EXPECT_NE(period.code, 0);
+  const Result alpha = Slambox("convert graph " + (dir / "g.txt").string() + " -o " + (dir / "x.stream").string() +
+                               " --odometry-alpha 0.1,-1,0.1,0.1");
+  EXPECT_NE(alpha.code, 0);
+  EXPECT_NE(alpha.output.find("--odometry-alpha"), std::string::npos) << alpha.output;
+  EXPECT_FALSE(fs::exists(dir / "x.stream"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
