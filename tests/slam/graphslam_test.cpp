@@ -110,6 +110,22 @@ TEST(GraphSlam, AtLeastAsAccurateAsEkfAndFarBetterThanOdometry) {
   EXPECT_LT(sum_graph, 0.95 * sum_ekf);
 }
 
+// A log with one odometry step per scan (Victoria Park, converted graphs): by default every
+// scan is a keyframe; the old default (a keyframe after 5 odometry steps) used one in five.
+TEST(GraphSlam, EveryScanIsAKeyframeWhateverTheOdometryRate) {
+  testing::SyntheticOptions o = LandmarkOptions(3, 1);
+  o.landmark_every_steps = 1;  // a scan at every odometry step
+  const Stream stream = MakeSyntheticStream(o, LandmarkWorld());
+  auto skipped = [&](const GraphSlamConfig& c) {
+    const Estimate e = RunModule<GraphSlam>(stream, c);
+    return e.diagnostics.at("skipped_scans").back().second;
+  };
+  EXPECT_EQ(skipped(GraphSlamConfig{}), 0.0);
+  GraphSlamConfig every_fifth;
+  every_fifth.keyframe_every_odometry = 5;
+  EXPECT_GT(skipped(every_fifth), 0.0);
+}
+
 // ANEES over 10 one-lap runs (seeds 100..109); the test prints it:
 // ./build/tests/slam_graphslam_test --gtest_filter=GraphSlam.CovariancesArePsdAndConsistent
 constexpr double kShortRunsAnees = 2.336;
