@@ -120,6 +120,7 @@ json RunAndWrite(const RunRequest& request) {
   doc["slambox_version"] = kVersion;
   doc["scenario"] = stream.header.scenario_name;
   doc["seed"] = stream.header.seed;
+  doc["converted_log"] = IsConvertedLog(stream.header);  // a log: its seed means nothing
   doc["duration_s"] = stream.header.duration_s;
   doc["distance_m"] = PathLength(stream.groundtruth);
   // A converted log's clock at t = 0 (for `eval --relations ... --time-origin-s`), and the relations used.

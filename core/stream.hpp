@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -81,6 +82,11 @@ struct StreamHeader {
   SensorSuite sensors;
   World world;                ///< ground truth map; SLAM modules must not read it (localization may)
 };
+
+/// A converted log's scenario_yaml starts with this comment (a simulated stream's holds its
+/// resolved scenario): a log has no seed and no scenario to re-simulate.
+inline constexpr std::string_view kConvertedLogYamlPrefix = "# converted from ";
+inline bool IsConvertedLog(const StreamHeader& h) { return h.scenario_yaml.starts_with(kConvertedLogYamlPrefix); }
 
 struct Stream {
   StreamHeader header;

@@ -63,7 +63,7 @@ Stream AssembleLandmarkLog(const LandmarkLog& log, const std::string& name, cons
 
   Stream s;
   s.header.scenario_name = std::filesystem::path(name).filename().string();
-  s.header.scenario_yaml = "# converted from " + o.description + " " + s.header.scenario_name +
+  s.header.scenario_yaml = std::string(kConvertedLogYamlPrefix) + o.description + " " + s.header.scenario_name +
                            (log.true_poses.empty() ? " (no ground truth)\n" : " (with its ground truth)\n");
   s.header.dt_s = o.pose_period_s;
   for (int k = 0; k <= last; ++k) {

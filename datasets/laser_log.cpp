@@ -38,7 +38,7 @@ Stream AssembleLaserLog(LaserLog log, const std::string& name, const LaserLogOpt
 
   Stream s;
   s.header.scenario_name = std::filesystem::path(name).filename().string();
-  s.header.scenario_yaml = "# converted from the " + log.format + " " + s.header.scenario_name + " (no ground truth)\n";
+  s.header.scenario_yaml = std::string(kConvertedLogYamlPrefix) + "the " + log.format + " " + s.header.scenario_name + " (no ground truth)\n";
   s.header.dt_s = o.dt_s;
   s.header.time_origin_s = t0;  // the log's clock at t = 0: relation files use that clock
   s.header.start_pose = log.odometry.front().pose * offset;

@@ -13,7 +13,7 @@ namespace slambox::render {
 
 std::string RunTitleSuffix(const RunFolder& run) {
   if (run.scenario.empty()) return "";
-  if (run.groundtruth.empty()) return " \u2014 " + run.scenario;
+  if (run.converted_log) return " \u2014 " + run.scenario;  // a log has no seed
   return " \u2014 " + run.scenario + ", seed " + std::to_string(run.seed);
 }
 
@@ -108,7 +108,8 @@ bool DrawMapFigure(const RunFolder& run, size_t algo, const std::string& stem, c
   const SeriesStyle style = AlgorithmStyle(run, algo);
   const Rgba c = style.stroke.color;
   std::vector<LegendEntry> legend;
-  if (run.has_world) legend.push_back({.label = "true walls", .line = {Rgba{0.72, 0.72, 0.72}, 1.5, {}}});
+  if (!run.world.wall_segments.empty() || !run.world.wall_circles.empty())
+    legend.push_back({.label = "true walls", .line = {Rgba{0.72, 0.72, 0.72}, 1.5, {}}});
   if (grid) legend.push_back({.label = "occupancy (dark = occupied)", .line = {{}, 0.0, {}}, .patch = Rgba{0.3, 0.3, 0.3}});
   if (!e.map_points.empty()) legend.push_back({.label = "LIDAR points", .line = {{}, 0.0, {}}, .marker = MarkerShape::kCircle, .marker_color = c});
   if (!e.landmarks.empty()) {

@@ -50,6 +50,7 @@ RunFolder ReadRunFolder(const std::string& dir) {
   }
   const fs::path gt_path = fs::path(dir) / "groundtruth.tum";
   if (fs::exists(gt_path)) run.groundtruth = ReadTum(gt_path.string());
+  run.converted_log = run.metrics.value("converted_log", run.groundtruth.empty());
   if (!run.metrics.contains("algorithms") || !run.metrics.at("algorithms").is_object())
     throw InputError(metrics_path, 0, "no \"algorithms\" object", "re-run `slambox run`");
   for (const auto& [name, entry] : run.metrics.at("algorithms").items()) {

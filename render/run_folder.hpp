@@ -30,6 +30,7 @@ struct RunFolder {
   std::string dir;
   std::string scenario;
   long seed = 0;
+  bool converted_log = false;  ///< metrics.json's converted_log (older folders: true when there is no ground truth)
   nlohmann::json metrics;
   World world;
   bool has_world = false;

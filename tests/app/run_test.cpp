@@ -48,6 +48,7 @@ TEST(Run, WritesTheRunFolderOfTheDesign) {
     EXPECT_TRUE(m.contains(k)) << k;
   EXPECT_EQ(m["scenario"], "loop");
   EXPECT_NEAR(m["duration_s"].get<double>(), 30.0, 0.05);
+  EXPECT_EQ(m["converted_log"], false);  // a simulated stream: its seed is in titles and reports
   const json& odo = m["algorithms"]["odometry"];
   for (const char* k : {"ate_rmse_m", "ate_mean_m", "ate_max_m", "ate_aligned_rmse_m", "rpe_trans_rmse_m",
                         "rpe_rot_rmse_deg", "anees", "landmark_rmse_m", "loop_closures", "loop_closure_precision",

@@ -47,5 +47,15 @@ TEST(LandmarkLog, RefusesPeriodsAndIdsAStreamCannotHold) {
   EXPECT_NE(Refusal(short_truth, {}).find("ground truth for 1 poses"), std::string::npos);
 }
 
+TEST(LandmarkLog, IsAConvertedLogEvenWithGroundTruth) {
+  LandmarkLog with_truth = OneStep();
+  with_truth.true_poses = {SE2(), SE2(1, 0, 0)};
+  EXPECT_TRUE(IsConvertedLog(AssembleLandmarkLog(OneStep(), "log.txt", {}).header));
+  EXPECT_TRUE(IsConvertedLog(AssembleLandmarkLog(with_truth, "log.txt", {}).header));
+  StreamHeader simulated;
+  simulated.scenario_yaml = "version: 1\nname: loop\n";
+  EXPECT_FALSE(IsConvertedLog(simulated));
+}
+
 }  // namespace
 }  // namespace slambox

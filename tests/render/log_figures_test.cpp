@@ -11,6 +11,7 @@ namespace {
 RunFolder LogRun() {
   RunFolder run;
   run.scenario = "intel.clf.bz2";
+  run.converted_log = true;
   AlgorithmResult a;
   a.name = "icp-poseslam";
   a.trajectory = {{0.0, SE2(0, 0, 0)}, {1.0, SE2(2, 1, 0)}};
@@ -42,7 +43,9 @@ TEST(LogFigures, ExtentCoversMapPointsAndOccupiedCells) {
 TEST(LogFigures, TitleNamesTheLogWithoutASeed) {
   RunFolder run = LogRun();
   EXPECT_EQ(RunTitleSuffix(run), " \u2014 intel.clf.bz2");
-  run.groundtruth = {{0.0, SE2()}};
+  run.groundtruth = {{0.0, SE2()}};  // a converted graph's ground truth: still no seed
+  EXPECT_EQ(RunTitleSuffix(run), " \u2014 intel.clf.bz2");
+  run.converted_log = false;
   run.seed = 3;
   run.scenario = "loop";
   EXPECT_EQ(RunTitleSuffix(run), " \u2014 loop, seed 3");
