@@ -122,7 +122,7 @@ json RunAndWrite(const RunRequest& request) {
   doc["seed"] = stream.header.seed;
   doc["converted_log"] = IsConvertedLog(stream.header);  // a log: its seed means nothing
   doc["duration_s"] = stream.header.duration_s;
-  doc["distance_m"] = PathLength(stream.groundtruth);
+  doc["distance_m"] = GroundTruthDistance(stream.groundtruth);  // NaN -> null: a log's is unknown
   // A converted log's clock at t = 0 (for `eval --relations ... --time-origin-s`), and the relations used.
   if (stream.header.time_origin_s) doc["time_origin_s"] = *stream.header.time_origin_s;
   if (!request.relations_path.empty()) doc["relations_file"] = request.relations_path;

@@ -175,6 +175,10 @@ double PathLength(const std::vector<StampedPose>& trajectory) {
   return length;
 }
 
+double GroundTruthDistance(const std::vector<StampedPose>& groundtruth) {
+  return groundtruth.empty() ? NAN : PathLength(groundtruth);
+}
+
 Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const EvalOptions& o) {
   Evaluation out;
   Metrics& m = out.metrics;
@@ -192,11 +196,12 @@ Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const Ev
                                                .interpolate = o.interpolate_groundtruth});
   for (int& i : a.estimate_index) i = original_index[i];
   m.matched_poses = a.t_s.size();
-  m.distance_m = PathLength(gt.trajectory);
+  m.distance_m = GroundTruthDistance(gt.trajectory);
 
   const AlignmentResult umeyama = UmeyamaAlignment(a.estimate, a.groundtruth);
   const std::vector<SE2> est_aligned = AlignedEstimate(a, o.align, umeyama);
   AddTrajectoryMetrics(a, est_aligned, o, umeyama, m, series);
+  if (gt.trajectory.empty()) m.alignment_reason = "the stream has no ground truth";
   AddFileRelations(est_poses, o, m);
   AddConsistency(a, est, o, m, series);
   AddLandmarks(gt, est, o, umeyama, m, series);

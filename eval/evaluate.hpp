@@ -63,4 +63,8 @@ Evaluation EvaluateEstimate(const GroundTruth& gt, const Estimate& est, const Ev
 /// Length of the polyline through the positions [m].
 double PathLength(const std::vector<StampedPose>& trajectory);
 
+/// The distance travelled by the ground truth [m]; NaN (written as null) when the stream
+/// has none (a converted log): 0 m would claim the robot stood still.
+double GroundTruthDistance(const std::vector<StampedPose>& groundtruth);
+
 }  // namespace slambox

@@ -80,9 +80,12 @@ std::string RunReport(const std::string& dir) {
   const nlohmann::json m = ReadJsonFile((fs::path(dir) / "metrics.json").string());
   std::string md = "# slambox run report\n\n";
   const bool log = m.value("converted_log", false);
+  const nlohmann::json distance = m.value("distance_m", nlohmann::json());  // null: no ground truth
   md += (log ? "Log **" : "Scenario **") + Cell(m.value("scenario", nlohmann::json())) +
-        (log ? "**" : "**, seed " + Cell(m.value("seed", nlohmann::json()))) + ", duration " + Cell(m.value("duration_s", nlohmann::json())) + " s, distance travelled " +
-        Cell(m.value("distance_m", nlohmann::json())) + " m (slambox " + Cell(m.value("slambox_version", nlohmann::json())) + ").\n\n";
+        (log ? "**" : "**, seed " + Cell(m.value("seed", nlohmann::json()))) + ", duration " +
+        Cell(m.value("duration_s", nlohmann::json())) + " s" +
+        (distance.is_number() ? ", distance travelled " + Cell(distance) + " m" : std::string()) + " (slambox " +
+        Cell(m.value("slambox_version", nlohmann::json())) + ").\n\n";
   md += "## Metrics\n\n";
   // Each entry read through the typed record, shown as metrics.json holds it.
   const std::string metrics_path = (fs::path(dir) / "metrics.json").string();

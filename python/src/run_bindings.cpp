@@ -1,5 +1,6 @@
 // slambox.run: replays a stream to registry modules (by name) and Python modules, scores
 // each with the evaluator `slambox run` uses (app/run_modules), and returns the results.
+#include <cmath>
 #include <set>
 
 #include "app/run_modules.hpp"
@@ -65,7 +66,8 @@ Results Run(const StreamHandle& handle, const py::list& algorithms, const py::di
   results.header["scenario"] = stream.header.scenario_name;
   results.header["seed"] = stream.header.seed;
   results.header["duration_s"] = stream.header.duration_s;
-  results.header["distance_m"] = PathLength(stream.groundtruth);
+  const double distance_m = GroundTruthDistance(stream.groundtruth);
+  results.header["distance_m"] = std::isnan(distance_m) ? py::object(py::none()) : py::object(py::float_(distance_m));
   std::size_t next_builtin = 0;
   for (const auto& e : entries) {
     ModuleRun run;

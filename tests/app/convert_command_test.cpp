@@ -57,10 +57,14 @@ TEST(Convert, CarmenLogReplaysThroughRunWithoutGroundTruth) {
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(dir / "run" / "metrics.json");
   const json m = json::parse(in);
+  EXPECT_EQ(m.at("converted_log"), true);
+  EXPECT_TRUE(m.at("distance_m").is_null());  // a log's true path is unknown (it was 0.0)
   for (const char* name : {"odometry", "icp-odometry"}) {
     const json& a = m.at("algorithms").at(name);
     EXPECT_EQ(a.at("status"), "ok") << a.dump();
     EXPECT_TRUE(a.at("ate_rmse_m").is_null());
+    EXPECT_TRUE(a.at("distance_m").is_null());
+    EXPECT_EQ(a.at("alignment_reason"), "the stream has no ground truth");
     EXPECT_TRUE(a.contains("note"));
     EXPECT_GT(a.at("realtime_factor").get<double>(), 0.0);
   }
@@ -274,7 +278,8 @@ TEST(Convert, GraphWithGroundTruthReplaysThroughRun) {
   const Result r = Slambox("run " + stream + " --algo odometry,ekf-slam --no-figures -q -o " + (dir / "run").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const json metrics = ReadJson(dir / "run" / "metrics.json");
-  EXPECT_EQ(metrics.at("converted_log"), true);  // ground truth or not, a log has no seed to show
+  EXPECT_EQ(metrics.at("converted_log"), true);
+  EXPECT_TRUE(metrics.at("distance_m").is_number());  // its ground truth's path  // ground truth or not, a log has no seed to show
   const json& algorithms = metrics.at("algorithms");
   for (const char* name : {"odometry", "ekf-slam"}) {
     const json& a = algorithms.at(name);

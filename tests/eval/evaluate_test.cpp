@@ -162,7 +162,7 @@ TEST(Evaluate, MetricsThatNeedGroundTruthAreNullWithoutIt) {
   // With the truth these are numbers (so the test below can fail)...
   const auto with = ToJson(EvaluateEstimate(truth, est).metrics);
   for (const char* key : {"loop_closure_precision", "grid_cell_error", "landmark_rmse_m",
-                          "landmark_spurious", "anees", "ate_rmse_m", "rpe_trans_rmse_m", "revisit_episodes"})
+                          "landmark_spurious", "anees", "ate_rmse_m", "rpe_trans_rmse_m", "revisit_episodes", "distance_m"})
     EXPECT_TRUE(with.at(key).is_number()) << key << " " << with.at(key);
   // ...without it they are null, and the counts that need no truth stay.
   const auto m = ToJson(EvaluateEstimate(GroundTruth{}, est).metrics);
@@ -171,8 +171,9 @@ TEST(Evaluate, MetricsThatNeedGroundTruthAreNullWithoutIt) {
                           "landmark_rmse_m", "landmark_ospa_m", "landmark_spurious", "landmark_missed",
                           "landmark_anees", "anees", "ate_rmse_m", "ate_aligned_rmse_m", "heading_rmse_deg",
                           "rpe_trans_rmse_m", "rpe_rot_rmse_deg", "kitti_trans_percent", "relation_trans_mean_m",
-                          "relation_unmatched", "nees_in_band_fraction"})
+                          "relation_unmatched", "nees_in_band_fraction", "distance_m"})
     EXPECT_TRUE(m.at(key).is_null()) << key << " " << m.at(key);
+  EXPECT_EQ(m.at("alignment_reason"), "the stream has no ground truth");
   EXPECT_EQ(m.at("loop_closures"), 1);
   EXPECT_EQ(m.at("loop_closures_proposed"), 1);
   EXPECT_EQ(m.at("status"), "ok");

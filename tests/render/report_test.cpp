@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "render/figures_run.hpp"
 #include "render/figures_sweep.hpp"
@@ -80,6 +82,24 @@ TEST(Report, RunReportEmbedsTablesAndFigures) {
   // Self-contained: the trajectories PNG is embedded byte for byte.
   EXPECT_NE(html.find("data:image/png;base64," + Base64(Slurp(dir + "/figures/trajectories.png"))), std::string::npos);
   EXPECT_EQ(html.find("src=\"figures/"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(Report, ALogIsNamedWithoutSeedOrDistance) {
+  const std::string dir = TempDir("logrun");
+  testing::WriteSyntheticRun(dir);
+  WriteReport(dir);
+  EXPECT_NE(Slurp(dir + "/report.md").find("Scenario **synthetic**, seed "), std::string::npos);
+  // As `run` writes a converted log's metrics.json: no seed to show, no true path length.
+  nlohmann::json m = nlohmann::json::parse(Slurp(dir + "/metrics.json"));
+  m["converted_log"] = true;
+  m["distance_m"] = nullptr;
+  std::ofstream(dir + "/metrics.json") << m.dump();
+  WriteReport(dir);
+  const std::string md = Slurp(dir + "/report.md");
+  EXPECT_NE(md.find("Log **synthetic**, duration "), std::string::npos) << md.substr(0, 300);
+  EXPECT_EQ(md.find("seed"), std::string::npos) << md.substr(0, 300);
+  EXPECT_EQ(md.find("distance travelled"), std::string::npos) << md.substr(0, 300);
   fs::remove_all(dir);
 }
 
