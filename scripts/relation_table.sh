@@ -24,7 +24,9 @@ mkdir -p "$out/streams"
 # MRPT's peers as MRPT's own configuration files for real laser logs set them up
 # (slam/mrpt/README.md, "On real logs", lists each key and what cannot be expressed):
 # mrpt-icp-slam from config_files/icp-slam/icp-slam_demo_classic.ini, mrpt-rbpf-slam from
-# config_files/rbpf-slam/gridmapping_optimal_sampling.ini (grid map, 25 particles).
+# config_files/rbpf-slam/gridmapping_RBPF_ICPbased_intel.ini (a point map per particle,
+# ICP-based optimal proposal, 10 particles; the same keys as tests/mrpt/rbpf_points_test.cpp).
+# The grid-map file gridmapping_optimal_sampling.ini, used before, gave 5.27 ± 8.61 m on intel.
 peer_settings() {
   case ",$algos," in *,mrpt-icp-slam,*|*,mrpt-rbpf-slam,*) echo "set:" ;; esac
   case ",$algos," in *,mrpt-icp-slam,*) cat <<'SET'
@@ -43,14 +45,25 @@ peer_settings() {
 SET
   esac
   case ",$algos," in *,mrpt-rbpf-slam,*) cat <<'SET'
-  algo.mrpt-rbpf-slam.particles: 25
-  algo.mrpt-rbpf-slam.localize_lin_distance_m: 1.0
-  algo.mrpt-rbpf-slam.localize_ang_distance_deg: 40
-  algo.mrpt-rbpf-slam.insertion_lin_distance_m: 1.0
-  algo.mrpt-rbpf-slam.insertion_ang_distance_deg: 40
-  algo.mrpt-rbpf-slam.likelihood_sigma_hit_m: 0.2
-  algo.mrpt-rbpf-slam.likelihood_decimation: 5
-  algo.mrpt-rbpf-slam.grid_resolution_m: 0.07
+  algo.mrpt-rbpf-slam.map: points
+  algo.mrpt-rbpf-slam.proposal: optimal
+  algo.mrpt-rbpf-slam.particles: 10
+  algo.mrpt-rbpf-slam.resampling: multinomial
+  algo.mrpt-rbpf-slam.resample_ess_ratio: 0.5
+  algo.mrpt-rbpf-slam.localize_lin_distance_m: 0.2
+  algo.mrpt-rbpf-slam.localize_ang_distance_deg: 10
+  algo.mrpt-rbpf-slam.insertion_lin_distance_m: 2.0
+  algo.mrpt-rbpf-slam.insertion_ang_distance_deg: 30
+  algo.mrpt-rbpf-slam.icp_min_quality: 0.80
+  algo.mrpt-rbpf-slam.icp_algorithm: lm
+  algo.mrpt-rbpf-slam.icp_max_iterations: 60
+  algo.mrpt-rbpf-slam.icp_threshold_dist_m: 1.0
+  algo.mrpt-rbpf-slam.icp_threshold_ang_deg: 5
+  algo.mrpt-rbpf-slam.icp_alfa: 0.5
+  algo.mrpt-rbpf-slam.icp_smallest_threshold_dist_m: 0.1
+  algo.mrpt-rbpf-slam.points_min_distance_m: 0.05
+  algo.mrpt-rbpf-slam.points_likelihood_max_corr_m: 5.0
+  algo.mrpt-rbpf-slam.points_likelihood_var_m2: 0.05
 SET
   esac
 }

@@ -10,10 +10,14 @@ namespace slambox {
 
 namespace mb = mrpt_bridge;
 
-void BindParams(MrptIcpSlamConfig& c, ParamBinder& b) {
+const EnumNames<MrptIcpAlgorithm>& MrptIcpAlgorithmNames() {
   static const EnumNames<MrptIcpAlgorithm> kNames = {{MrptIcpAlgorithm::kClassic, "classic"},
                                                     {MrptIcpAlgorithm::kLevenbergMarquardt, "lm"}};
-  b.Bind("icp_algorithm", c.icp_algorithm, kNames, "CICP variant: icpClassic or icpLevenbergMarquardt");
+  return kNames;
+}
+
+void BindParams(MrptIcpSlamConfig& c, ParamBinder& b) {
+  b.Bind("icp_algorithm", c.icp_algorithm, MrptIcpAlgorithmNames(), "CICP variant: icpClassic or icpLevenbergMarquardt");
   b.Bind("icp_max_iterations", c.icp_max_iterations, "-", "CICP maxIterations");
   b.Bind("icp_threshold_dist_m", c.icp_threshold_dist_m, "m", "CICP thresholdDist: initial pairing distance");
   b.Bind("icp_threshold_ang_deg", c.icp_threshold_ang_deg, "deg", "CICP thresholdAng: pairing distance per metre of range");

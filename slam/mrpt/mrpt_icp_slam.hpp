@@ -14,6 +14,8 @@ namespace slambox {
 
 /// MRPT's icpClassic or icpLevenbergMarquardt.
 enum class MrptIcpAlgorithm { kClassic, kLevenbergMarquardt };
+/// Its names ("classic", "lm"): the one table, shared by every module with a CICP option.
+const EnumNames<MrptIcpAlgorithm>& MrptIcpAlgorithmNames();
 
 struct MrptIcpSlamConfig {
   MrptIcpAlgorithm icp_algorithm = MrptIcpAlgorithm::kClassic;  ///< classic | lm
