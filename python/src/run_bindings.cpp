@@ -65,6 +65,7 @@ Results Run(const StreamHandle& handle, const py::list& algorithms, const py::di
   Results results;
   results.header["scenario"] = stream.header.scenario_name;
   results.header["seed"] = stream.header.seed;
+  results.header["converted_log"] = IsConvertedLog(stream.header);  // as metrics.json: a log's seed means nothing
   results.header["duration_s"] = stream.header.duration_s;
   const double distance_m = GroundTruthDistance(stream.groundtruth);
   results.header["distance_m"] = std::isnan(distance_m) ? py::object(py::none()) : py::object(py::float_(distance_m));

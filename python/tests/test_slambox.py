@@ -103,6 +103,7 @@ def test_run_gives_the_cli_metrics_bit_for_bit(tmp_path, cli):
     res = slambox.run(s, ["odometry", "icp-poseslam"])
     assert res.names == ["odometry", "icp-poseslam"]
     assert res.header["distance_m"] == doc["distance_m"]
+    assert res.header["converted_log"] is False and doc["converted_log"] is False
     for name in res.names:
         r = res[name]
         assert r.status == "ok" == doc["algorithms"][name]["status"]
