@@ -134,14 +134,7 @@ json RunAndWrite(const RunRequest& request) {
   for (const auto& name : names) doc["modules"][name] = {{"baseline", FindModule(name).baseline}};
   // The sweep report's pictures are drawn from this run in memory, after metrics.json.
   render::RunFolder pictures;
-  if (request.pictures) {
-    pictures.dir = dir.string();
-    pictures.scenario = stream.header.scenario_name;
-    pictures.seed = static_cast<long>(stream.header.seed);
-    pictures.world = stream.header.world;
-    pictures.has_world = render::WorldHasGeometry(stream.header.world);
-    pictures.groundtruth = stream.groundtruth;
-  }
+  if (request.pictures) pictures = render::RunFolderOfStream(stream, dir.string());
   WriteTum((dir / "groundtruth.tum").string(), stream.groundtruth);
   WriteJson(dir / "world.json", {{"scenario", stream.header.scenario_name},
                                  {"seed", stream.header.seed},

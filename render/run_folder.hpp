@@ -50,4 +50,20 @@ bool BaselineFlag(const nlohmann::json& doc, const std::string& name, const std:
 /// Throws InputError when metrics.json is missing or any present file is malformed.
 RunFolder ReadRunFolder(const std::string& dir);
 
+/// What ReadRunFolder reads back of a run of `stream` before any module's results (dir,
+/// scenario, seed, converted_log, world, ground truth), from the stream itself: the sweep
+/// draws its pictures from this, in memory. Leaves metrics empty. Inline: the app links no
+/// renderer (it loads it at run time) but fills this.
+inline RunFolder RunFolderOfStream(const Stream& stream, const std::string& dir) {
+  RunFolder run;
+  run.dir = dir;
+  run.scenario = stream.header.scenario_name;
+  run.seed = static_cast<long>(stream.header.seed);
+  run.converted_log = IsConvertedLog(stream.header);
+  run.world = stream.header.world;
+  run.has_world = WorldHasGeometry(stream.header.world);
+  run.groundtruth = stream.groundtruth;
+  return run;
+}
+
 }  // namespace slambox::render

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "render/figures_run_parts.hpp"
+#include "render/run_folder.hpp"
 #include "render/world_layer.hpp"
 
 namespace slambox::render {
@@ -49,6 +50,27 @@ TEST(LogFigures, TitleNamesTheLogWithoutASeed) {
   run.seed = 3;
   run.scenario = "loop";
   EXPECT_EQ(RunTitleSuffix(run), " \u2014 loop, seed 3");
+}
+
+// The sweep draws a run's pictures from the stream in memory: its titles must be those of
+// the run folder read back, so a converted log shows no seed there either.
+TEST(LogFigures, PicturesOfAStreamKnowItIsALog) {
+  Stream log;
+  log.header.scenario_name = "intel.clf.bz2";
+  log.header.scenario_yaml = std::string(kConvertedLogYamlPrefix) + "the CARMEN log intel.clf.bz2 (no ground truth)\n";
+  const RunFolder from_log = RunFolderOfStream(log, "/tmp/x");
+  EXPECT_TRUE(from_log.converted_log);
+  EXPECT_FALSE(from_log.has_world);
+  EXPECT_EQ(RunTitleSuffix(from_log), " \u2014 intel.clf.bz2");
+  Stream simulated;
+  simulated.header.scenario_name = "loop";
+  simulated.header.scenario_yaml = "version: 1\nname: loop\n";
+  simulated.header.seed = 3;
+  simulated.groundtruth = {{0.0, SE2()}};
+  const RunFolder from_sim = RunFolderOfStream(simulated, "/tmp/y");
+  EXPECT_FALSE(from_sim.converted_log);
+  EXPECT_EQ(from_sim.groundtruth.size(), 1u);
+  EXPECT_EQ(RunTitleSuffix(from_sim), " \u2014 loop, seed 3");
 }
 
 }  // namespace
