@@ -10,6 +10,17 @@
 
 namespace slambox::mrpt_bridge {
 
+void SetIcpParams(const MrptIcpParams& p, mrpt::slam::CICP::TConfigParams& out) {
+  out.ICP_algorithm =
+      p.algorithm == MrptIcpAlgorithm::kLevenbergMarquardt ? mrpt::slam::icpLevenbergMarquardt : mrpt::slam::icpClassic;
+  out.maxIterations = static_cast<unsigned>(p.max_iterations);
+  out.thresholdDist = p.threshold_dist_m;
+  out.thresholdAng = p.threshold_ang_deg * M_PI / 180.0;
+  out.ALFA = p.alfa;
+  out.smallestThresholdDist = p.smallest_threshold_dist_m;
+  out.corresponding_points_decimation = static_cast<uint32_t>(p.points_decimation);
+}
+
 void SeedMrptRandom(std::uint64_t seed) {
   // MRPT's generator takes a 32-bit seed; fold the high half in so seeds 2^32 apart differ.
   mrpt::random::getRandomGenerator().randomize(static_cast<uint32_t>(seed ^ (seed >> 32)));

@@ -11,11 +11,13 @@
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPose2D.h>
+#include <mrpt/slam/CICP.h>
 
 #include "core/estimate.hpp"
 #include "core/odometry_model.hpp"
 #include "core/sensors.hpp"
 #include "core/stream.hpp"
+#include "slam/mrpt/mrpt_icp_params.hpp"
 
 namespace slambox::mrpt_bridge {
 
@@ -23,6 +25,10 @@ inline mrpt::poses::CPose2D ToMrpt(const SE2& T) { return {T.x, T.y, T.theta}; }
 inline SE2 FromMrpt(const mrpt::poses::CPose2D& T) { return {T.x(), T.y(), T.phi()}; }
 /// Stream times are seconds since the run's start; MRPT stamps are absolute clock times.
 inline mrpt::Clock::time_point ToMrptTime(double t_s) { return mrpt::Clock::fromDouble(t_s); }
+
+/// The module's `icp_*` keys into MRPT's CICP settings (angles in radians there); the
+/// fields CICP has beyond them keep their values.
+void SetIcpParams(const MrptIcpParams& p, mrpt::slam::CICP::TConfigParams& out);
 
 /// Seeds MRPT's global random generator (particle filters, motion-model sampling).
 void SeedMrptRandom(std::uint64_t seed);

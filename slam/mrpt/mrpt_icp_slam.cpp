@@ -10,20 +10,8 @@ namespace slambox {
 
 namespace mb = mrpt_bridge;
 
-const EnumNames<MrptIcpAlgorithm>& MrptIcpAlgorithmNames() {
-  static const EnumNames<MrptIcpAlgorithm> kNames = {{MrptIcpAlgorithm::kClassic, "classic"},
-                                                    {MrptIcpAlgorithm::kLevenbergMarquardt, "lm"}};
-  return kNames;
-}
-
 void BindParams(MrptIcpSlamConfig& c, ParamBinder& b) {
-  b.Bind("icp_algorithm", c.icp_algorithm, MrptIcpAlgorithmNames(), "CICP variant: icpClassic or icpLevenbergMarquardt");
-  b.Bind("icp_max_iterations", c.icp_max_iterations, "-", "CICP maxIterations");
-  b.Bind("icp_threshold_dist_m", c.icp_threshold_dist_m, "m", "CICP thresholdDist: initial pairing distance");
-  b.Bind("icp_threshold_ang_deg", c.icp_threshold_ang_deg, "deg", "CICP thresholdAng: pairing distance per metre of range");
-  b.Bind("icp_alfa", c.icp_alfa, "-", "CICP ALFA: threshold shrink factor at convergence");
-  b.Bind("icp_smallest_threshold_dist_m", c.icp_smallest_threshold_dist_m, "m", "CICP smallestThresholdDist");
-  b.Bind("icp_points_decimation", c.icp_points_decimation, "-", "CICP corresponding_points_decimation");
+  BindIcpParams(c.icp, b, "");
   b.Bind("min_icp_goodness", c.min_icp_goodness, "-", "minimum fraction of paired points to accept an ICP pose");
   b.Bind("insertion_lin_distance_m", c.insertion_lin_distance_m, "m", "motion before a scan is inserted into the map");
   b.Bind("insertion_ang_distance_deg", c.insertion_ang_distance_deg, "deg", "rotation before a scan is inserted into the map");
@@ -62,14 +50,7 @@ void MrptIcpSlam::Start(const StreamHeader& header) {
   points.insertionOpts.minDistBetweenLaserPoints = static_cast<float>(config_.map_min_point_distance_m);
   points.insertionOpts.isPlanarMap = true;
   b.ICP_options.mapInitializers.push_back(points);
-  auto& p = b.ICP_params;
-  p.ICP_algorithm = config_.icp_algorithm == MrptIcpAlgorithm::kLevenbergMarquardt ? mrpt::slam::icpLevenbergMarquardt : mrpt::slam::icpClassic;
-  p.maxIterations = static_cast<unsigned>(config_.icp_max_iterations);
-  p.thresholdDist = config_.icp_threshold_dist_m;
-  p.thresholdAng = config_.icp_threshold_ang_deg * M_PI / 180.0;
-  p.ALFA = config_.icp_alfa;
-  p.smallestThresholdDist = config_.icp_smallest_threshold_dist_m;
-  p.corresponding_points_decimation = static_cast<uint32_t>(config_.icp_points_decimation);
+  mb::SetIcpParams(config_.icp, b.ICP_params);
   // MRPT runs in the start frame (it starts at the identity); Record maps poses back.
   b.initialize();
   s.estimate.trajectory.push_back({0.0, s.start, Eigen::Matrix3d::Zero(), true});

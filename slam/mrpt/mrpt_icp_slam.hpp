@@ -9,22 +9,12 @@
 #include <string>
 
 #include "core/slam_module.hpp"
+#include "slam/mrpt/mrpt_icp_params.hpp"
 
 namespace slambox {
 
-/// MRPT's icpClassic or icpLevenbergMarquardt.
-enum class MrptIcpAlgorithm { kClassic, kLevenbergMarquardt };
-/// Its names ("classic", "lm"): the one table, shared by every module with a CICP option.
-const EnumNames<MrptIcpAlgorithm>& MrptIcpAlgorithmNames();
-
 struct MrptIcpSlamConfig {
-  MrptIcpAlgorithm icp_algorithm = MrptIcpAlgorithm::kClassic;  ///< classic | lm
-  int icp_max_iterations = 80;
-  double icp_threshold_dist_m = 0.75;     ///< initial pairing distance
-  double icp_threshold_ang_deg = 0.15;    ///< pairing distance grows by this angle times range
-  double icp_alfa = 0.5;                  ///< threshold shrink factor at convergence
-  double icp_smallest_threshold_dist_m = 0.05;
-  int icp_points_decimation = 5;          ///< use every n-th correspondence
+  MrptIcpParams icp{.max_iterations = 80, .smallest_threshold_dist_m = 0.05};  ///< the `icp_*` keys
   double min_icp_goodness = 0.40;         ///< fraction of paired points to accept a match
   double insertion_lin_distance_m = 0.5;  ///< motion before a scan joins the map
   double insertion_ang_distance_deg = 20.0;

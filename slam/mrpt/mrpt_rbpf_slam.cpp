@@ -52,13 +52,7 @@ void BindParams(MrptRbpfSlamConfig& c, ParamBinder& b) {
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on MRPT's Gaussian-model stds (scale * sqrt(a_i))");
   b.Bind("grid_beam_upsampling", c.grid_beam_upsampling, "-", "invalid beams between real ones: bounds MRPT's grid-insertion angle error");
   b.Bind("occupied_below_free_prob", c.occupied_below_free_prob, "-", "grid cells with p(free) below this are map points");
-  b.Bind("icp_algorithm", c.icp_algorithm, MrptIcpAlgorithmNames(), "optimal proposal: CICP icpClassic or icpLevenbergMarquardt");
-  b.Bind("icp_max_iterations", c.icp_max_iterations, "-", "optimal proposal: CICP maxIterations", AtLeast(1));
-  b.Bind("icp_threshold_dist_m", c.icp_threshold_dist_m, "m", "optimal proposal: CICP thresholdDist (initial pairing distance)", Above(0));
-  b.Bind("icp_threshold_ang_deg", c.icp_threshold_ang_deg, "deg", "optimal proposal: CICP thresholdAng (pairing distance per metre of range)", AtLeast(0));
-  b.Bind("icp_alfa", c.icp_alfa, "-", "optimal proposal: CICP ALFA (threshold shrink factor at convergence)", Between(0, 1));
-  b.Bind("icp_smallest_threshold_dist_m", c.icp_smallest_threshold_dist_m, "m", "optimal proposal: CICP smallestThresholdDist", Above(0));
-  b.Bind("icp_points_decimation", c.icp_points_decimation, "-", "optimal proposal: CICP corresponding_points_decimation", AtLeast(1));
+  BindIcpParams(c.icp, b, "optimal proposal: ");
   b.Bind("points_min_distance_m", c.points_min_distance_m, "m", "map=points: insertion minDistBetweenLaserPoints", AtLeast(0));
   b.Bind("points_likelihood_var_m2", c.points_likelihood_var_m2, "m^2", "map=points: likelihood sigma_dist, a variance (log p = -mean clipped d^2 / this)", Above(0));
   b.Bind("points_likelihood_max_corr_m", c.points_likelihood_max_corr_m, "m", "map=points: likelihood max_corr_distance (distances clipped here)", Above(0));
@@ -82,15 +76,7 @@ mrpt::slam::CMetricMapBuilderRBPF::TConstructionOptions MakeMrptRbpfOptions(cons
   // pfOptimalProposal_mapSelection: 0 = grid, 3 = points); it asserts that map exists.
   o.predictionOptions.pfOptimalProposal_mapSelection = c.map == MrptRbpfMap::kPoints ? 3 : 0;
   o.predictionOptions.ICPGlobalAlign_MinQuality = static_cast<float>(c.icp_min_quality);
-  auto& icp = o.predictionOptions.icp_params;
-  icp.ICP_algorithm =
-      c.icp_algorithm == MrptIcpAlgorithm::kLevenbergMarquardt ? mrpt::slam::icpLevenbergMarquardt : mrpt::slam::icpClassic;
-  icp.maxIterations = static_cast<unsigned>(c.icp_max_iterations);
-  icp.thresholdDist = c.icp_threshold_dist_m;
-  icp.thresholdAng = c.icp_threshold_ang_deg * M_PI / 180.0;
-  icp.ALFA = c.icp_alfa;
-  icp.smallestThresholdDist = c.icp_smallest_threshold_dist_m;
-  icp.corresponding_points_decimation = static_cast<uint32_t>(c.icp_points_decimation);
+  mrpt_bridge::SetIcpParams(c.icp, o.predictionOptions.icp_params);
   if (c.map == MrptRbpfMap::kPoints) {
     // gridmapping_RBPF_ICPbased_intel.ini's [..._pointsMap_00_*]: planar, no fusion.
     mrpt::maps::CSimplePointsMap::TMapDefinition points;

@@ -23,7 +23,7 @@
 #include <string>
 
 #include "core/slam_module.hpp"
-#include "slam/mrpt/mrpt_icp_slam.hpp"  // MrptIcpAlgorithm
+#include "slam/mrpt/mrpt_icp_params.hpp"
 
 namespace slambox {
 
@@ -51,14 +51,7 @@ struct MrptRbpfSlamConfig {
   double motion_noise_scale = 1.0;       ///< MRPT Gaussian model stds: scale * sqrt(a_i) of the stream
   int grid_beam_upsampling = 16;         ///< see ToMrptScanForGrid: MRPT's grid insertion angle error / 16
   double occupied_below_free_prob = 0.3; ///< a cell is a map point when p(free) < this
-  // CICP of the optimal proposal (CICP::TConfigParams; defaults are MRPT's).
-  MrptIcpAlgorithm icp_algorithm = MrptIcpAlgorithm::kClassic;  ///< classic | lm
-  int icp_max_iterations = 40;
-  double icp_threshold_dist_m = 0.75;    ///< initial pairing distance
-  double icp_threshold_ang_deg = 0.15;   ///< pairing distance grows by this angle times range
-  double icp_alfa = 0.5;                 ///< threshold shrink factor at convergence
-  double icp_smallest_threshold_dist_m = 0.1;
-  int icp_points_decimation = 5;         ///< use every n-th correspondence
+  MrptIcpParams icp;                     ///< CICP of the optimal proposal (the `icp_*` keys; MRPT's defaults)
   // The point map (map=points; defaults are MRPT's CPointsMap options).
   double points_min_distance_m = 0.02;   ///< insertion: drop points closer than this to the last
   double points_likelihood_var_m2 = 0.0025;   ///< MRPT sigma_dist (a variance): log p = -mean(min(d², max_corr²)) / var
