@@ -73,6 +73,16 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
 }
 
+void BindEkfSlamModuleParams(EkfSlamConfig& c, ParamBinder& b) {
+  BindParams(c, b);
+  b.Bind("closure_test", c.closure_test, "-",
+         "unknown ids with clutter: a pairing or merge whose own gate may hold a fake (mu > 1 - P_G) forks the "
+         "filter into a branch with that loop closure and one without (uncertain gates there start new landmarks); "
+         "each later scan adds log p(scan | branch), the Poisson likelihood of its detections (clutter_per_scan and "
+         "the measured birth density, P_D(range) and existence of the landmarks, their expected detections in view), "
+         "and the branch ahead by log((1-a)/a), a = 1 - P[chi2(2) < gate_accept_chi2], goes on alone");
+}
+
 EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {
   // ekf-slam's own settings, and graphslam's front end (same field names).
   auto fail = [](const std::string& field, const std::string& problem, const std::string& fix) {
@@ -105,6 +115,11 @@ void EkfSlam::Start(const StreamHeader& header) {
   merged_into_.clear();
   co_observed_.clear();
   held_streak_.clear();
+  closure_rival_.clear();
+  closure_log_ratio_ = 0.0;
+  scan_log_likelihood_ = 0.0;
+  blocks_closures_ = false;
+  uncertain_merge_pending_ = false;
   clutter_per_scan_ = sensor.clutter_per_scan;
   births_ = 0;
   next_key_ = 0;
@@ -115,6 +130,7 @@ void EkfSlam::Start(const StreamHeader& header) {
 }
 
 void EkfSlam::OnOdometry(const OdometryEvent& odometry) {
+  if (!closure_rival_.empty()) closure_rival_.front().OnOdometry(odometry);
   const OdometryIncrement u = Decompose(odometry.delta);
   const MotionPrediction p = PredictMotion(state_.Pose(), u);
   Eigen::Matrix3d J = p.J_pose_pose;
@@ -159,6 +175,19 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
   else target = AssociateJcbb(state_, z, R_, gates).landmark;
   const std::vector<bool> held = HoldPairings(z, target);
+  if (blocks_closures_) BlockUncertainClosures(z, target);
+  const bool testing = !closure_rival_.empty();
+  if (testing || blocks_closures_) scan_log_likelihood_ = ScanLogLikelihoodOf(z);  // before the update
+  if (MayStartClosureTest() && HasUncertainPairing(z, target)) StartClosureTest(event, z, target, held);
+  const std::vector<int> keys = ApplyScan(event, z, target, held);
+  if (uncertain_merge_pending_) StartClosureTestAtMerge(event.t_s);
+  if (testing) ContinueClosureTest(event);
+  return keys;
+}
+
+std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vector<Eigen::Vector2d>& z,
+                                    const std::vector<int>& target, const std::vector<bool>& held) {
+  const auto& obs = event.observations;
   const std::vector<double> mu = ExpectedClutterInGates();  // the gates the pairings were made in
 
   // One batched update with every matched observation, linearized at the current
@@ -207,7 +236,12 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
       for (size_t b = a + 1; b < keys.size(); ++b)
         if (keys[a] >= 0 && keys[b] >= 0 && keys[a] != keys[b]) co_observed_.insert(std::minmax(keys[a], keys[b]));
   ManageExistence(matched, held, mu, event.t_s);
-  const int merged = known_ids_ ? 0 : MergeDuplicates();
+  // A merge whose gate may hold a fake is a loop closure on uncertain evidence: deferred
+  // to the closure test (or, in the branch that tests without it, not made).
+  bool uncertain_merge = false;
+  const int merged =
+      known_ids_ ? 0 : MergeDuplicates(blocks_closures_ || MayStartClosureTest(), &uncertain_merge);
+  uncertain_merge_pending_ = uncertain_merge && MayStartClosureTest();
 
   int confirmed = 0;
   for (const auto& t : tracks_) confirmed += t.confirmed ? 1 : 0;
@@ -243,98 +277,7 @@ std::vector<bool> EkfSlam::HoldPairings(const std::vector<Eigen::Vector2d>& z, s
                                held_streak_);
 }
 
-std::vector<double> EkfSlam::ExpectedClutterInGates() const {
-  std::vector<double> mu(tracks_.size(), 0.0);
-  if (known_ids_ || !(clutter_density_per_m2_ > 0)) return mu;
-  const SE2 pose = state_.Pose();
-  for (size_t j = 0; j < tracks_.size(); ++j) {
-    const int index = static_cast<int>(j);
-    const double range_m = PredictObservation(pose, state_.Landmark(index)).z.x();
-    mu[j] = ExpectedFalseInGate(InnovationCovariance(state_, index, R_), range_m, config_.gate_accept_chi2,
-                                clutter_density_per_m2_);
-  }
-  return mu;
-}
-
-double EkfSlam::NewLandmarkPriorLogRatio() const {
-  // Of the births_ detections that started a landmark in scan_ + 1 scans, clutter_per_scan
-  // per scan are expected to be clutter (the gates of mapped landmarks take a negligible
-  // share of the footprint); the rest are real. Laplace's rule keeps the fraction inside
-  // (0, 1): a stream of clutter only drives the prior odds of a new landmark towards 0.
-  const double n = births_, clutter = clutter_per_scan_ * (scan_ + 1);
-  const double p_real = std::clamp((n - clutter + 1.0) / (n + 2.0), 1.0 / (n + 2.0), (n + 1.0) / (n + 2.0));
-  return std::log(p_real / (1.0 - p_real));
-}
-
-bool EkfSlam::ReadyToConfirm(const LandmarkTrack& t) const {
-  return config_.tentative_existence == ExistenceRule::kSequentialTest ? t.log_ratio >= wald_.log_confirm
-                                                                      : t.sightings >= config_.confirm_sightings;
-}
-
-void EkfSlam::ManageExistence(const std::vector<bool>& matched, const std::vector<bool>& held,
-                              const std::vector<double>& mu, double t_s) {
-  if (known_ids_) return;  // a known id names a real landmark: never removed
-  const SE2 pose = state_.Pose();
-  for (int j = static_cast<int>(matched.size()) - 1; j >= 0; --j) {
-    LandmarkTrack& t = tracks_[j];
-    const bool was_confirmed = t.confirmed;
-    const bool seen = matched[j] || held[j];  // held: seen, not missed
-    const bool tentative_sprt = config_.tentative_existence == ExistenceRule::kSequentialTest;
-    if (!tentative_sprt && seen) t.confirmed = t.confirmed || ReadyToConfirm(t);
-    const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
-    const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
-    // Not confirmed in time: with counts at any place, with the sequential test only out
-    // of view, where no trial can decide it (nor should it stay where a later real
-    // observation could be paired with it).
-    if (!t.confirmed && (!tentative_sprt || !in_view) && t_s - t.created_t_s > config_.tentative_max_age_s) {
-      RemoveLandmark(state_, j);
-      tracks_.erase(tracks_.begin() + j);
-      continue;
-    }
-    if (!in_view) {
-      // A miss is evidence only where a detection was expected; a detection is evidence
-      // anywhere (a landmark seen only near range_max would otherwise never be tried).
-      if (matched[j] && !held[j]) {
-        const double p_band = config_.estimate_detection_rate ? DetectionProbability(detection_, zp.x()) : 1.0;
-        t.log_ratio += DetectedLogRatio(p_band, gate_probability_, mu[j]);
-        if (tentative_sprt) t.confirmed = t.confirmed || ReadyToConfirm(t);
-      }
-      continue;
-    }
-    // Counts: a miss costs how likely a detection was (before this scan): P_D at this
-    // range over the confirmed landmarks, for a confirmed one times its own visibility,
-    // its detections over those P_D predicted for it (a tentative one's history is too short).
-    const double band = DetectionProbability(detection_, zp.x());
-    const double visibility = t.confirmed ? (t.detected_scans + 1.0) / (t.expected_detections + 1.0) : 1.0;
-    const double cost = config_.estimate_detection_rate ? std::min(1.0, band * visibility) : 1.0;
-    // Confirmed landmarks (before this scan: its own sighting may have confirmed it) measure P_D.
-    if (was_confirmed) CountExpected(detection_, zp.x(), seen);
-    t.expected_detections += band;
-    if (seen) t.detected_scans += 1.0;
-    // A trial of the sequential test takes P_D at this range, not the landmark's own
-    // visibility: that is estimated from the very trials under test, and a phantom's few
-    // sightings would make its misses ever cheaper. A held pairing is no evidence either way.
-    const double p_detect = config_.estimate_detection_rate ? band : 1.0;
-    if (!held[j])
-      t.log_ratio += matched[j] ? DetectedLogRatio(p_detect, gate_probability_, mu[j])
-                                : MissedLogRatio(p_detect, gate_probability_, mu[j]);
-    if (!seen) {
-      t.misses += cost;
-      t.existence -= cost;
-    }
-    if (tentative_sprt && matched[j]) t.confirmed = t.confirmed || ReadyToConfirm(t);  // by a sighting
-    const ExistenceRule rule = t.confirmed ? config_.confirmed_existence : config_.tentative_existence;
-    const bool remove = rule == ExistenceRule::kSequentialTest ? t.log_ratio <= wald_.log_delete
-                        : t.confirmed                          ? !seen && t.existence <= 0
-                                                               : !seen && t.misses >= config_.tentative_max_misses;
-    if (remove) {
-      RemoveLandmark(state_, j);
-      tracks_.erase(tracks_.begin() + j);
-    }
-  }
-}
-
-int EkfSlam::MergeDuplicates() {
+int EkfSlam::MergeDuplicates(bool certain_only, bool* uncertain_found) {
   if (!(config_.merge_probability > 0.0)) return 0;
   const double gate = ChiSquareQuantile(config_.merge_probability, 2.0);
   const Eigen::Vector2d robot = state_.Pose().translation();
@@ -350,7 +293,12 @@ int EkfSlam::MergeDuplicates() {
       for (size_t q = p + 1; q < near.size() && !again; ++q) {
         const int a = near[p], b = near[q];  // a < b: a is the older landmark and is kept
         if (SeenTogether(tracks_[a].key, tracks_[b].key)) continue;
-        if (LandmarkDifferenceChi2(state_, a, b) >= gate) continue;
+        const PointDifference difference = DifferenceOf(state_.mean, state_.covariance, 3 + 2 * a, 3 + 2 * b);
+        if (!(difference.d2 < gate)) continue;
+        if (certain_only && ExpectedInGate(difference.C, gate, clutter_density_per_m2_) > 1.0 - gate_probability_) {
+          if (uncertain_found != nullptr) *uncertain_found = true;
+          continue;
+        }
         if (!MergeLandmarks(state_, a, b)) continue;
         LandmarkTrack& keep = tracks_[a];
         const LandmarkTrack& gone = tracks_[b];
@@ -382,6 +330,7 @@ int EkfSlam::ResolveKey(int key) const {
 void EkfSlam::OnLandmarks(const LandmarkEvent& event) { ProcessLandmarks(event); }
 
 Estimate EkfSlam::Finish() {
+  if (!closure_rival_.empty()) EndClosureTest(closure_log_ratio_ >= 0.0, estimate_.trajectory.back().t_s);
   std::map<int, int> id_of_key;  // known association: the landmark's true id names it
   for (const auto& [id, key] : key_of_id_) id_of_key[key] = id;
   for (ObservationAssignment& a : estimate_.observation_assignments) {
@@ -401,7 +350,7 @@ Estimate EkfSlam::Finish() {
 ModuleInfo EkfSlamModule() {
   return MakeModuleInfo<EkfSlam, EkfSlamConfig>(
       "ekf-slam", "EKF-SLAM over point landmarks (known ids, nearest neighbour or JCBB; optional FEJ)",
-      {.odometry = true, .landmarks = true}, &BindParams);
+      {.odometry = true, .landmarks = true}, &BindEkfSlamModuleParams);
 }
 
 }  // namespace slambox

@@ -17,8 +17,12 @@
 // landmarks that become statistically identical (slam/landmark_merge.hpp) are merged, unless they were
 // ever seen in one scan (then they are two landmarks, however close). A pairing whose gate
 // may hold clutter (the lone re-observation of an old landmark after drift) is held until
-// pairings of other landmarks support it (slam/held_pairings.hpp). Optional FEJ-EKF
-// (Huang, Mourikis & Roumeliotis 2008).
+// pairings of other landmarks support it (slam/held_pairings.hpp). A loop closure that
+// still rests on uncertain evidence (a released pairing or a merge whose own gate may hold
+// a fake) is tested on the scans that follow it: the filter forks into a branch with the
+// closure and one without, and Wald's test on their scan likelihoods
+// (slam/scan_likelihood.hpp) keeps one (closure_test, slam/ekf_slam_closure.cpp). Optional
+// FEJ-EKF (Huang, Mourikis & Roumeliotis 2008).
 #include <algorithm>
 #include <map>
 #include <set>
@@ -66,12 +70,15 @@ struct EkfSlamConfig {
   HoldEvidence hold_evidence = HoldEvidence::kDistinctLandmarks;  ///< what that evidence is (slam/held_pairings.hpp)
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
+  bool closure_test = true;             ///< unknown ids with clutter, ekf-slam only (graphslam's front end: off): a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   int update_iterations = 1;            ///< [-] iterated EKF update: relinearizations per scan (1 = EKF; slam/ekf_slam_filter.hpp)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
 };
 void BindParams(EkfSlamConfig& c, ParamBinder& b);
+/// The `ekf-slam` module's parameters: BindParams and closure_test (not a front-end setting).
+void BindEkfSlamModuleParams(EkfSlamConfig& c, ParamBinder& b);
 
 /// Bookkeeping of one landmark in the state (same order as the state's landmarks).
 struct LandmarkTrack {
@@ -97,7 +104,9 @@ class EkfSlam : public SlamModule {
   Estimate Finish() override;
 
   /// Processes a scan and returns per observation the key of the landmark it updated or
-  /// created, or -1 if it was discarded (clutter, ambiguous).
+  /// created, or -1 if it was discarded (clutter, ambiguous). With closure_test the keys are
+  /// those of the branch that made the scan's closure; a test that ends in its rival renames
+  /// them (graphslam, which keeps them, runs its front end without the test).
   std::vector<int> ProcessLandmarks(const LandmarkEvent& event);
   const EkfSlamState& state() const { return state_; }
   const std::vector<LandmarkTrack>& tracks() const { return tracks_; }
@@ -105,6 +114,9 @@ class EkfSlam : public SlamModule {
   int ResolveKey(int key) const;
 
  private:
+  /// Update, new landmarks, existence, merges and bookkeeping of a scan whose association is decided.
+  std::vector<int> ApplyScan(const LandmarkEvent& event, const std::vector<Eigen::Vector2d>& z,
+                             const std::vector<int>& target, const std::vector<bool>& held);
   std::vector<int> AssociateKnownIds(const std::vector<LandmarkObservation>& obs) const;
   /// Discards (holds) the pairings of `target` that may be fakes (slam/held_pairings.hpp); returns the held landmarks.
   std::vector<bool> HoldPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target);
@@ -116,7 +128,28 @@ class EkfSlam : public SlamModule {
   bool ReadyToConfirm(const LandmarkTrack& t) const;
   /// existence=sprt: log prior odds that a new landmark is real (births against clutter_per_scan).
   double NewLandmarkPriorLogRatio() const;
-  int MergeDuplicates();
+  /// certain_only: merges whose gate may hold a fake are left, and reported in *uncertain_found.
+  int MergeDuplicates(bool certain_only = false, bool* uncertain_found = nullptr);
+
+  // The closure test (slam/ekf_slam_closure.cpp). A pairing or a merge whose own gate
+  // expects more fakes than the gate misses real landmarks (mu > 1 - P_G) closes a loop on
+  // uncertain evidence. The filter then forks: this branch makes the closure, a copy (the
+  // rival) does not (what only uncertain gates support becomes new landmarks). Both follow
+  // the stream; each scan adds log p(scan | this) - log p(scan | rival)
+  // (slam/scan_likelihood.hpp) to closure_log_ratio_, and at Wald's bounds (the existence
+  // test's, +-log((1 - a) / a), a = 1 - P_G) the better branch goes on alone.
+  bool MayStartClosureTest() const;
+  bool UncertainGate(int landmark, double range_m) const;
+  bool HasUncertainPairing(const std::vector<Eigen::Vector2d>& z, const std::vector<int>& target) const;
+  void BlockUncertainClosures(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target) const;
+  void StartClosureTest(const LandmarkEvent& event, const std::vector<Eigen::Vector2d>& z,
+                        const std::vector<int>& target, const std::vector<bool>& held);
+  void StartClosureTestAtMerge(double t_s);
+  void ContinueClosureTest(const LandmarkEvent& event);
+  void EndClosureTest(bool keep_closure, double t_s);
+  double ScanLogLikelihoodOf(const std::vector<Eigen::Vector2d>& z) const;
+  /// [1/m^2] real births per scan over the sensor's footprint (Reid's density of new targets).
+  double NewLandmarkDensity() const;
   bool SeenTogether(int key_a, int key_b) const { return co_observed_.count(std::minmax(key_a, key_b)) > 0; }
   void Record(double t_s, const std::string& name, double value) {
     estimate_.diagnostics[name].emplace_back(t_s, value);
@@ -144,6 +177,11 @@ class EkfSlam : public SlamModule {
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction
   Estimate estimate_;
+  std::vector<EkfSlam> closure_rival_;  ///< while a closure is tested: the branch without it (at most one)
+  double closure_log_ratio_ = 0.0;      ///< the test's sum of log p(scan | this) - log p(scan | rival)
+  double scan_log_likelihood_ = 0.0;    ///< this scan's, before its update (while testing)
+  bool blocks_closures_ = false;        ///< the rival: no closure on uncertain pairings or merges
+  bool uncertain_merge_pending_ = false;
 };
 
 ModuleInfo EkfSlamModule();

@@ -26,6 +26,18 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
 }
 
+namespace {
+// The front end's keys name the graph's landmarks scan by scan; a closure test that ended
+// in its rival branch would rename those of the scans it spanned. graphslam revises the
+// association in the smoother instead (smoother_merges).
+EkfSlamConfig FrontEndConfig(EkfSlamConfig c) {
+  c.closure_test = false;
+  return c;
+}
+}  // namespace
+
+GraphSlam::GraphSlam(const GraphSlamConfig& config) : config_(config), frontend_(FrontEndConfig(config.frontend)) {}
+
 void GraphSlam::Start(const StreamHeader& header) {
   frontend_.Start(header);
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};

@@ -42,7 +42,7 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b);
 
 class GraphSlam : public SlamModule {
  public:
-  explicit GraphSlam(const GraphSlamConfig& config) : config_(config), frontend_(config.frontend) {}
+  explicit GraphSlam(const GraphSlamConfig& config);
   void Start(const StreamHeader& header) override;
   void OnOdometry(const OdometryEvent& odometry) override;
   void OnLandmarks(const LandmarkEvent& event) override;

@@ -1,0 +1,111 @@
+// The existence side of `ekf-slam` with unknown ids: the clutter expected in each gate,
+// the prior odds of a new landmark, Wald's sequential test and the existence counts per
+// scan (slam/landmark_existence.hpp, slam/detection_rate.hpp; slam/ekf_slam.hpp).
+#include <algorithm>
+#include <cmath>
+
+#include "slam/ekf_slam.hpp"
+#include "slam/range_bearing.hpp"
+
+namespace slambox {
+
+std::vector<double> EkfSlam::ExpectedClutterInGates() const {
+  std::vector<double> mu(tracks_.size(), 0.0);
+  if (known_ids_ || !(clutter_density_per_m2_ > 0)) return mu;
+  const SE2 pose = state_.Pose();
+  for (size_t j = 0; j < tracks_.size(); ++j) {
+    const int index = static_cast<int>(j);
+    const double range_m = PredictObservation(pose, state_.Landmark(index)).z.x();
+    mu[j] = ExpectedFalseInGate(InnovationCovariance(state_, index, R_), range_m, config_.gate_accept_chi2,
+                                clutter_density_per_m2_);
+  }
+  return mu;
+}
+
+double EkfSlam::NewLandmarkPriorLogRatio() const {
+  // Of the births_ detections that started a landmark in scan_ + 1 scans, clutter_per_scan
+  // per scan are expected to be clutter (the gates of mapped landmarks take a negligible
+  // share of the footprint); the rest are real. Laplace's rule keeps the fraction inside
+  // (0, 1): a stream of clutter only drives the prior odds of a new landmark towards 0.
+  const double n = births_, clutter = clutter_per_scan_ * (scan_ + 1);
+  const double p_real = std::clamp((n - clutter + 1.0) / (n + 2.0), 1.0 / (n + 2.0), (n + 1.0) / (n + 2.0));
+  return std::log(p_real / (1.0 - p_real));
+}
+
+double EkfSlam::NewLandmarkDensity() const {
+  // Detections that started a landmark, less the clutter expected among them, per scan
+  // over the sensor's footprint (r^2 half_fov): the density of new landmarks per scan.
+  const double scans = scan_ + 1.0;
+  const double footprint_m2 = range_max_m_ * range_max_m_ * half_fov_rad_;
+  return std::max(0.0, births_ - clutter_per_scan_ * scans) / (scans * footprint_m2);
+}
+
+bool EkfSlam::ReadyToConfirm(const LandmarkTrack& t) const {
+  return config_.tentative_existence == ExistenceRule::kSequentialTest ? t.log_ratio >= wald_.log_confirm
+                                                                      : t.sightings >= config_.confirm_sightings;
+}
+
+void EkfSlam::ManageExistence(const std::vector<bool>& matched, const std::vector<bool>& held,
+                              const std::vector<double>& mu, double t_s) {
+  if (known_ids_) return;  // a known id names a real landmark: never removed
+  const SE2 pose = state_.Pose();
+  for (int j = static_cast<int>(matched.size()) - 1; j >= 0; --j) {
+    LandmarkTrack& t = tracks_[j];
+    const bool was_confirmed = t.confirmed;
+    const bool seen = matched[j] || held[j];  // held: seen, not missed
+    const bool tentative_sprt = config_.tentative_existence == ExistenceRule::kSequentialTest;
+    if (!tentative_sprt && seen) t.confirmed = t.confirmed || ReadyToConfirm(t);
+    const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
+    const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
+    // Not confirmed in time: with counts at any place, with the sequential test only out
+    // of view, where no trial can decide it (nor should it stay where a later real
+    // observation could be paired with it).
+    if (!t.confirmed && (!tentative_sprt || !in_view) && t_s - t.created_t_s > config_.tentative_max_age_s) {
+      RemoveLandmark(state_, j);
+      tracks_.erase(tracks_.begin() + j);
+      continue;
+    }
+    if (!in_view) {
+      // A miss is evidence only where a detection was expected; a detection is evidence
+      // anywhere (a landmark seen only near range_max would otherwise never be tried).
+      if (matched[j] && !held[j]) {
+        const double p_band = config_.estimate_detection_rate ? DetectionProbability(detection_, zp.x()) : 1.0;
+        t.log_ratio += DetectedLogRatio(p_band, gate_probability_, mu[j]);
+        if (tentative_sprt) t.confirmed = t.confirmed || ReadyToConfirm(t);
+      }
+      continue;
+    }
+    // Counts: a miss costs how likely a detection was (before this scan): P_D at this
+    // range over the confirmed landmarks, for a confirmed one times its own visibility,
+    // its detections over those P_D predicted for it (a tentative one's history is too short).
+    const double band = DetectionProbability(detection_, zp.x());
+    const double visibility = t.confirmed ? (t.detected_scans + 1.0) / (t.expected_detections + 1.0) : 1.0;
+    const double cost = config_.estimate_detection_rate ? std::min(1.0, band * visibility) : 1.0;
+    // Confirmed landmarks (before this scan: its own sighting may have confirmed it) measure P_D.
+    if (was_confirmed) CountExpected(detection_, zp.x(), seen);
+    t.expected_detections += band;
+    if (seen) t.detected_scans += 1.0;
+    // A trial of the sequential test takes P_D at this range, not the landmark's own
+    // visibility: that is estimated from the very trials under test, and a phantom's few
+    // sightings would make its misses ever cheaper. A held pairing is no evidence either way.
+    const double p_detect = config_.estimate_detection_rate ? band : 1.0;
+    if (!held[j])
+      t.log_ratio += matched[j] ? DetectedLogRatio(p_detect, gate_probability_, mu[j])
+                                : MissedLogRatio(p_detect, gate_probability_, mu[j]);
+    if (!seen) {
+      t.misses += cost;
+      t.existence -= cost;
+    }
+    if (tentative_sprt && matched[j]) t.confirmed = t.confirmed || ReadyToConfirm(t);  // by a sighting
+    const ExistenceRule rule = t.confirmed ? config_.confirmed_existence : config_.tentative_existence;
+    const bool remove = rule == ExistenceRule::kSequentialTest ? t.log_ratio <= wald_.log_delete
+                        : t.confirmed                          ? !seen && t.existence <= 0
+                                                               : !seen && t.misses >= config_.tentative_max_misses;
+    if (remove) {
+      RemoveLandmark(state_, j);
+      tracks_.erase(tracks_.begin() + j);
+    }
+  }
+}
+
+}  // namespace slambox
