@@ -2,8 +2,6 @@
 // loop closure on uncertain evidence is decided by the scans that follow it, not by the
 // scan that proposes it. See EkfSlam in slam/ekf_slam.hpp.
 #include <cmath>
-#include <cstdlib>
-#include <cstdio>
 
 #include "slam/ekf_slam.hpp"
 #include "slam/range_bearing.hpp"
