@@ -295,7 +295,7 @@ int EkfSlam::MergeDuplicates(bool certain_only, bool* uncertain_found) {
         if (SeenTogether(tracks_[a].key, tracks_[b].key)) continue;
         const PointDifference difference = DifferenceOf(state_.mean, state_.covariance, 3 + 2 * a, 3 + 2 * b);
         if (!(difference.d2 < gate)) continue;
-        if (certain_only && ExpectedInGate(difference.C, gate, clutter_density_per_m2_) > 1.0 - gate_probability_) {
+        if (certain_only && ExpectedInGate(difference.C, gate, FakeDensity()) > 1.0 - gate_probability_) {
           if (uncertain_found != nullptr) *uncertain_found = true;
           continue;
         }

@@ -70,7 +70,7 @@ struct EkfSlamConfig {
   HoldEvidence hold_evidence = HoldEvidence::kDistinctLandmarks;  ///< what that evidence is (slam/held_pairings.hpp)
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
-  bool closure_test = true;             ///< unknown ids with clutter, ekf-slam only (graphslam's front end: off): a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
+  bool closure_test = true;             ///< unknown ids, ekf-slam only (graphslam's front end: off): a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   int update_iterations = 1;            ///< [-] iterated EKF update: relinearizations per scan (1 = EKF; slam/ekf_slam_filter.hpp)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
@@ -150,6 +150,8 @@ class EkfSlam : public SlamModule {
   double ScanLogLikelihoodOf(const std::vector<Eigen::Vector2d>& z) const;
   /// [1/m^2] real births per scan over the sensor's footprint (Reid's density of new targets).
   double NewLandmarkDensity() const;
+  /// [1/m^2] clutter plus new landmarks: the density of detections no mapped landmark explains.
+  double FakeDensity() const;
   bool SeenTogether(int key_a, int key_b) const { return co_observed_.count(std::minmax(key_a, key_b)) > 0; }
   void Record(double t_s, const std::string& name, double value) {
     estimate_.diagnostics[name].emplace_back(t_s, value);

@@ -10,7 +10,7 @@
 namespace slambox {
 
 bool EkfSlam::MayStartClosureTest() const {
-  return config_.closure_test && !known_ids_ && clutter_density_per_m2_ > 0.0 && !blocks_closures_ &&
+  return config_.closure_test && !known_ids_ && FakeDensity() > 0.0 && !blocks_closures_ &&
          closure_rival_.empty();
 }
 
@@ -18,7 +18,7 @@ bool EkfSlam::UncertainGate(int landmark, double range_m) const {
   // The hold's criterion on the landmark's own gate, not the gate given the scan's other
   // pairings: two coincidences can pin each other down (forest seed 1).
   return ExpectedFalseInGate(InnovationCovariance(state_, landmark, R_), range_m, config_.gate_accept_chi2,
-                             clutter_density_per_m2_) > 1.0 - gate_probability_;
+                             FakeDensity()) > 1.0 - gate_probability_;
 }
 
 bool EkfSlam::HasUncertainPairing(const std::vector<Eigen::Vector2d>& z, const std::vector<int>& target) const {
@@ -93,6 +93,13 @@ void EkfSlam::EndClosureTest(bool keep_closure, double t_s) {
   Record(t_s, "closure_kept", keep_closure ? 1.0 : 0.0);
 }
 
+double EkfSlam::FakeDensity() const {
+  // What else a gate may hold: clutter, or a landmark not mapped yet. Unlike clutter, an
+  // unmapped landmark repeats scan after scan, so the held pairings (which wait for
+  // repeats) count only clutter; the closure test, which weighs whole scans, counts both.
+  return clutter_density_per_m2_ + NewLandmarkDensity();
+}
+
 double EkfSlam::ScanLogLikelihoodOf(const std::vector<Eigen::Vector2d>& z) const {
   std::vector<double> p_detect(tracks_.size());
   const SE2 pose = state_.Pose();
@@ -102,7 +109,7 @@ double EkfSlam::ScanLogLikelihoodOf(const std::vector<Eigen::Vector2d>& z) const
     p_detect[j] = p_band / (1.0 + std::exp(-tracks_[j].log_ratio));  // times the probability that it exists
   }
   return ScanLogLikelihood(state_, z, R_, p_detect,
-                           {clutter_density_per_m2_ + NewLandmarkDensity(), range_max_m_, half_fov_rad_});
+                           {FakeDensity(), range_max_m_, half_fov_rad_});
 }
 
 }  // namespace slambox
