@@ -27,8 +27,8 @@ slambox::testing::CliResult Slambox(const std::string& args) {
 }
 
 fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("slambox_exec_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = slambox::testing::FreshTempDir("exec_" + name);
+  fs::remove_all(dir);  // the commands under test create it
   return dir;
 }
 

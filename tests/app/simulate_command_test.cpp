@@ -7,13 +7,13 @@
 
 #include "core/error.hpp"
 #include "core/stream_io.hpp"
+#include "tests/support/slambox_cli.hpp"
 
 namespace slambox {
 namespace {
 
 std::string TempPath(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("slambox_simulate_cmd_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  static const std::filesystem::path dir = testing::FreshTempDir("simulate_cmd");
   return (dir / name).string();
 }
 

@@ -10,6 +10,7 @@
 #include "app/sweep_spec.hpp"
 #include "app/sweep_summary.hpp"
 #include "core/error.hpp"
+#include "tests/support/slambox_cli.hpp"
 
 namespace slambox {
 namespace {
@@ -17,8 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / ("slambox_sweep_spec_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  static const fs::path dir = testing::FreshTempDir("sweep_spec");
   const fs::path p = dir / name;
   std::ofstream(p) << text;
   return p.string();

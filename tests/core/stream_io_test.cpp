@@ -14,6 +14,7 @@
 #include <zlib.h>
 
 #include "core/error.hpp"
+#include "tests/support/slambox_cli.hpp"
 #include "tests/support/synthetic_stream.hpp"
 
 namespace slambox {
@@ -45,8 +46,7 @@ Stream SmallStream() {
 }
 
 std::string TempPath(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("slambox_stream_io_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  static const std::filesystem::path dir = testing::FreshTempDir("stream_io");
   return (dir / name).string();
 }
 

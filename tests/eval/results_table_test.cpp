@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "tests/support/slambox_cli.hpp"
 
 namespace slambox {
 namespace {
@@ -17,7 +18,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("slambox_results_" + std::to_string(::getpid()) + "_" + name);
+  static const fs::path dir = testing::FreshTempDir("results");
+  const fs::path p = dir / name;
   std::ofstream(p, std::ios::binary) << text;
   return p.string();
 }

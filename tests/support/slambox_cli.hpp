@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <vector>
 
 namespace slambox::testing {
 
@@ -28,12 +30,24 @@ inline CliResult RunSlambox(const std::string& binary, const std::string& args) 
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
 }
 
-/// An empty folder slambox_<tag>_<pid> under the system's temporary folder.
+/// Folders handed out by FreshTempDir, removed when the test process exits normally.
+struct TempDirRegistry {
+  std::vector<std::filesystem::path> dirs;
+  ~TempDirRegistry() {
+    std::error_code ignored;
+    for (const auto& d : dirs) std::filesystem::remove_all(d, ignored);
+  }
+};
+
+/// An empty folder slambox_<tag>_<pid> under the system's temporary folder, removed with
+/// everything in it when the test process exits.
 inline std::filesystem::path FreshTempDir(const std::string& tag) {
+  static TempDirRegistry registry;
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("slambox_" + tag + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  registry.dirs.push_back(dir);
   return dir;
 }
 
