@@ -76,7 +76,7 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
 void BindEkfSlamModuleParams(EkfSlamConfig& c, ParamBinder& b) {
   BindParams(c, b);
   b.Bind("closure_test", c.closure_test, "-",
-         "unknown ids with clutter: a pairing or merge whose own gate may hold a fake (mu > 1 - P_G) forks the "
+         "unknown ids: a pairing or merge whose own gate may hold a fake (clutter or an unmapped landmark; mu > 1 - P_G) forks the "
          "filter into a branch with that loop closure and one without (uncertain gates there start new landmarks); "
          "each later scan adds log p(scan | branch), the Poisson likelihood of its detections (clutter_per_scan and "
          "the measured birth density, P_D(range) and existence of the landmarks, their expected detections in view), "
