@@ -1,4 +1,4 @@
-// `slambox convert carmen LOG -o STREAM` (and `victoria-park`, `rawlog`, `graph`): a real log
+// `slambox convert carmen LOG -o STREAM` (and `victoria-park`, `islsjf-sim`, `rawlog`, `graph`): a real log
 // into a stream file, which `slambox run` replays like a simulated one (without ground truth,
 // so pose metrics are null, unless a graph's --groundtruth gives it). CARMEN logs and MRPT
 // rawlogs become streams the same way (datasets/laser_log.hpp); rawlogs are read by the MRPT
@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/stream_io.hpp"
 #include "datasets/carmen_log.hpp"
+#include "datasets/islsjf_simulation.hpp"
 #include "datasets/laser_log.hpp"
 #include "datasets/landmark_log.hpp"
 #include "datasets/victoria_park.hpp"
@@ -29,6 +30,7 @@ struct ConvertRequest {
   CarmenImportOptions carmen;
   LaserLogOptions rawlog;
   VictoriaParkImportOptions victoria;
+  IslsjfSimulationOptions islsjf;
   GraphLogOptions graph_read;
   LandmarkLogOptions graph{.pose_period_s = 1.0, .fov_deg = 360.0};
   std::vector<double> alpha;
@@ -65,6 +67,24 @@ void ConvertVictoriaPark(const ConvertRequest& r) {
   line.precision(6);
   for (double a : s.header.sensors.odometry->alpha) line << " " << a;
   line << (r.alpha.empty() ? " fitted to the file's covariances" : "") << ") -> " << r.output;
+  std::cerr << line.str() << "\n";
+}
+
+void ConvertIslsjfSimulation(const ConvertRequest& r) {
+  IslsjfSimulationOptions o = r.islsjf;
+  if (!r.alpha.empty()) o.odometry_alpha = Alpha(r.alpha, {});
+  IslsjfSimulationReport report;
+  const Stream s = ReadIslsjfSimulation(r.input, o, &report);
+  WriteStream(s, r.output);
+  const LandmarkSensorConfig& lm = *s.header.sensors.landmarks;
+  std::ostringstream line;
+  line << "converted " << r.input << ": " << report.steps << " steps of " << report.time_interval_s << " s, "
+       << report.observations << " observations of " << report.beacons_seen << " beacons (known ids; sigma_range "
+       << lm.sigma_range_m << " m, sigma_bearing " << lm.sigma_bearing_deg << " deg, range max " << report.range_max_m
+       << " m, fov " << report.fov_deg << " deg; odometry alpha";
+  for (double a : s.header.sensors.odometry->alpha) line << " " << a;
+  line << (r.alpha.empty() ? " fitted to the motion noise" : "") << ")"
+       << (report.ground_truth ? ", with ground truth" : ", no ground truth") << " -> " << r.output;
   std::cerr << line.str() << "\n";
 }
 
@@ -189,6 +209,21 @@ void AddConvertCommand(CLI::App& app) {
                  "odometry noise a1,a2,a3,a4 (Thrun's model; default: fitted to the file's odometry covariances)")
       ->delimiter(',');
   vp->callback([r] { ConvertVictoriaPark(*r); });
+  CLI::App* sim = cmd->add_subcommand(
+      "islsjf-sim", "a simulated range-bearing run of the 2D-I-SLSJF release (folder: sensor_data.txt, store_speed.txt, "
+                    "store_turnrate.txt, parameters.txt; store_robotTrue.txt, store_beaconsTrue.txt as ground truth)");
+  sim->add_option("folder", r->input, "the run's folder, e.g. landmark/sim_535")->required();
+  sim->add_option("-o,--output", r->output, "stream file to write")->required();
+  sim->add_option("--time-interval-s", r->islsjf.time_interval_s, "time between steps (default: parameters.txt TimeInterval)");
+  sim->add_option("--sigma-speed-mps", r->islsjf.sigma_speed_mps, "speed noise, a standard deviation (default: sigv)");
+  sim->add_option("--sigma-turnrate-deg-s", r->islsjf.sigma_turnrate_deg_s, "turn-rate noise (default: sigomega)");
+  sim->add_option("--sigma-range-m", r->islsjf.sigma_range_m, "range noise (default: sigr)");
+  sim->add_option("--sigma-bearing-deg", r->islsjf.sigma_bearing_deg, "bearing noise (default: sigtheta)");
+  sim->add_option("--range-max-m", r->islsjf.range_max_m, "the detector's range (default: the farthest observation)");
+  sim->add_option("--fov-deg", r->islsjf.fov_deg, "field of view (default: twice the widest bearing observed)");
+  sim->add_option("--odometry-alpha", r->alpha, "odometry noise a1,a2,a3,a4 (default: fitted to the motion noise)")
+      ->delimiter(',');
+  sim->callback([r] { ConvertIslsjfSimulation(*r); });
 }
 
 }  // namespace slambox

@@ -26,6 +26,8 @@ Stream AssembleLandmarkLog(const LandmarkLog& log, const std::string& name, cons
   if (!(o.pose_period_s > 0) || !(o.fov_deg > 0 && o.fov_deg <= 360))
     throw InputError(name, 0, "invalid import options (pose_period_s > 0, 0 < fov_deg <= 360)",
                      "check --pose-period-s / --fov-deg");
+  if (o.range_max_m && !(*o.range_max_m > 0 && std::isfinite(*o.range_max_m)))
+    throw InputError(name, 0, "invalid range max (must be a finite number > 0)", "check --range-max-m");
   if (log.increments.empty()) throw InputError(name, 0, "no odometry step", "the poses must form one chain 0, 1, 2, ...");
   const int last = static_cast<int>(log.increments.size());
   if (last * o.pose_period_s > limits::kMaxTimestampS) {
@@ -83,7 +85,7 @@ Stream AssembleLandmarkLog(const LandmarkLog& log, const std::string& name, cons
   odo.alpha = o.odometry_alpha ? *o.odometry_alpha : FitOdometryAlpha(log.increments, log.increment_covariances).alpha;
   LandmarkSensorConfig lm;
   lm.rate_hz = 1.0 / o.pose_period_s;
-  lm.range_max_m = std::ceil(range_max);
+  lm.range_max_m = o.range_max_m ? *o.range_max_m : std::ceil(range_max);
   lm.fov_deg = o.fov_deg;
   lm.sigma_range_m = Median(sigma_range);
   lm.sigma_bearing_deg = Median(sigma_bearing) * 180.0 / M_PI;

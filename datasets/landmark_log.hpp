@@ -38,6 +38,8 @@ struct LandmarkLog {
 struct LandmarkLogOptions {
   double pose_period_s = 0.2;  ///< [s] time between consecutive poses
   double fov_deg = 360.0;      ///< the detector's field of view, centred ahead (header only)
+  /// The detector's range [m]; empty: the farthest sighting rounded up to a whole metre.
+  std::optional<double> range_max_m = std::nullopt;
   /// Thrun's odometry noise; empty: fitted to the per-step covariances.
   std::optional<std::array<double, 4>> odometry_alpha = std::nullopt;
   std::string description = {};  ///< what the data is (the header's scenario comment)

@@ -2,16 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <sstream>
 #include <vector>
 
 #include "core/error.hpp"
-#include "core/limits.hpp"
 #include "datasets/compressed_file.hpp"
 #include "datasets/landmark_log.hpp"
+#include "datasets/number_rows.hpp"
 
 namespace slambox {
 
@@ -22,26 +20,10 @@ Stream ParseVictoriaPark(const std::string& text, const std::string& name, const
   std::map<int, std::pair<SE2, Eigen::Matrix3d>> odometry;  // end pose -> increment, covariance
   LandmarkLog log;
   int last_observed = -1;
-  std::istringstream in(text);
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    limits::CheckLineLength(name, line_number, line.size());
-    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::vector<double> v;
-    std::string token;
-    while (fields >> token) {
-      char* end = nullptr;
-      const double x = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0' || !std::isfinite(x))
-        throw InputError(name, line_number, "'" + token + "' is not a finite number",
-                         "fix or delete this line (format: datasets/victoria_park.hpp)");
-      v.push_back(x);
-    }
+  for (const NumberRow& row : ParseNumberRows(text, name, "fix or delete this line (format: datasets/victoria_park.hpp)")) {
+    const std::vector<double>& v = row.values;
     const auto fail = [&](const std::string& problem) {
-      throw InputError(name, line_number, problem, "fix or delete this line (format: datasets/victoria_park.hpp)");
+      throw InputError(name, row.line, problem, "fix or delete this line (format: datasets/victoria_park.hpp)");
     };
     if (v.size() != 12) fail("expected 12 fields, found " + std::to_string(v.size()));
     const auto index = [&](double x, const char* what) {
