@@ -66,6 +66,13 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
          "it (at most 1), not 1");
   b.Bind("detection_rate_bands", c.detection_rate_bands, "bands", "range bands of the detection probability estimate",
          AtLeast(1));
+  b.Bind("closure_test", c.closure_test, "-",
+         "unknown ids: a pairing or merge whose own gate may hold a fake (clutter or an unmapped landmark; mu > 1 - P_G) forks the "
+         "filter into a branch with that loop closure and one without (uncertain gates there start new landmarks); "
+         "each later scan adds log p(scan | branch), the Poisson likelihood of its detections (clutter_per_scan and "
+         "the measured birth density, P_D(range) and existence of the landmarks, their expected detections in view), "
+         "and the branch ahead by log((1-a)/a), a = 1 - P[chi2(2) < gate_accept_chi2], goes on alone (graphslam: its "
+         "graph takes the surviving branch's association of those scans)");
   b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
   b.Bind("update_iterations", c.update_iterations, "-",
          "iterated EKF: Gauss-Newton steps of each scan's update, relinearized at the iterate (1 = plain EKF)", AtLeast(1));
@@ -73,15 +80,7 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
 }
 
-void BindEkfSlamModuleParams(EkfSlamConfig& c, ParamBinder& b) {
-  BindParams(c, b);
-  b.Bind("closure_test", c.closure_test, "-",
-         "unknown ids: a pairing or merge whose own gate may hold a fake (clutter or an unmapped landmark; mu > 1 - P_G) forks the "
-         "filter into a branch with that loop closure and one without (uncertain gates there start new landmarks); "
-         "each later scan adds log p(scan | branch), the Poisson likelihood of its detections (clutter_per_scan and "
-         "the measured birth density, P_D(range) and existence of the landmarks, their expected detections in view), "
-         "and the branch ahead by log((1-a)/a), a = 1 - P[chi2(2) < gate_accept_chi2], goes on alone");
-}
+void BindEkfSlamModuleParams(EkfSlamConfig& c, ParamBinder& b) { BindParams(c, b); }
 
 EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {
   // ekf-slam's own settings, and graphslam's front end (same field names).
@@ -120,6 +119,7 @@ void EkfSlam::Start(const StreamHeader& header) {
   scan_log_likelihood_ = 0.0;
   blocks_closures_ = false;
   uncertain_merge_pending_ = false;
+  fork_scan_ = revised_from_scan_ = -1;
   clutter_per_scan_ = sensor.clutter_per_scan;
   births_ = 0;
   next_key_ = 0;
@@ -165,6 +165,7 @@ std::vector<int> EkfSlam::AssociateKnownIds(const std::vector<LandmarkObservatio
 }
 
 std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
+  revised_from_scan_ = -1;
   const auto& obs = event.observations;
   std::vector<Eigen::Vector2d> z(obs.size());
   for (size_t i = 0; i < obs.size(); ++i) z[i] = {obs[i].range_m, obs[i].bearing_rad};
@@ -330,6 +331,7 @@ int EkfSlam::ResolveKey(int key) const {
 void EkfSlam::OnLandmarks(const LandmarkEvent& event) { ProcessLandmarks(event); }
 
 Estimate EkfSlam::Finish() {
+  revised_from_scan_ = -1;
   if (!closure_rival_.empty()) EndClosureTest(closure_log_ratio_ >= 0.0, estimate_.trajectory.back().t_s);
   std::map<int, int> id_of_key;  // known association: the landmark's true id names it
   for (const auto& [id, key] : key_of_id_) id_of_key[key] = id;

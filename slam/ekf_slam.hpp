@@ -70,14 +70,14 @@ struct EkfSlamConfig {
   HoldEvidence hold_evidence = HoldEvidence::kDistinctLandmarks;  ///< what that evidence is (slam/held_pairings.hpp)
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
-  bool closure_test = true;             ///< unknown ids, ekf-slam only (graphslam's front end: off): a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
+  bool closure_test = true;             ///< unknown ids: a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   int update_iterations = 1;            ///< [-] iterated EKF update: relinearizations per scan (1 = EKF; slam/ekf_slam_filter.hpp)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
 };
 void BindParams(EkfSlamConfig& c, ParamBinder& b);
-/// The `ekf-slam` module's parameters: BindParams and closure_test (not a front-end setting).
+/// The `ekf-slam` module's parameters: BindParams (named, for MakeModuleInfo; BindParams is overloaded).
 void BindEkfSlamModuleParams(EkfSlamConfig& c, ParamBinder& b);
 
 /// Bookkeeping of one landmark in the state (same order as the state's landmarks).
@@ -108,6 +108,12 @@ class EkfSlam : public SlamModule {
   /// those of the branch that made the scan's closure; a test that ends in its rival renames
   /// them (graphslam, which keeps them, runs its front end without the test).
   std::vector<int> ProcessLandmarks(const LandmarkEvent& event);
+  /// The first scan (index among the landmark events) whose keys the last ProcessLandmarks
+  /// revised, or -1: a closure test ended in its rival, whose keys, poses and landmarks from
+  /// its fork on replace this branch's (graphslam then rebuilds those scans' observations).
+  int revised_from_scan() const { return revised_from_scan_; }
+  /// The output so far: trajectory and assignments by scan, with the keys of the moment.
+  const Estimate& partial_estimate() const { return estimate_; }
   const EkfSlamState& state() const { return state_; }
   const std::vector<LandmarkTrack>& tracks() const { return tracks_; }
   /// The key a landmark's observations now belong to: itself, or the landmark it was merged into.
@@ -184,6 +190,8 @@ class EkfSlam : public SlamModule {
   double scan_log_likelihood_ = 0.0;    ///< this scan's, before its update (while testing)
   bool blocks_closures_ = false;        ///< the rival: no closure on uncertain pairings or merges
   bool uncertain_merge_pending_ = false;
+  int fork_scan_ = -1;          ///< the running test's first scan whose keys the branches may differ in
+  int revised_from_scan_ = -1;  ///< revised_from_scan()
 };
 
 ModuleInfo EkfSlamModule();

@@ -42,6 +42,7 @@ void EkfSlam::BlockUncertainClosures(const std::vector<Eigen::Vector2d>& z, std:
 void EkfSlam::StartClosureTest(const LandmarkEvent& event, const std::vector<Eigen::Vector2d>& z,
                                const std::vector<int>& target, const std::vector<bool>& held) {
   Record(event.t_s, "closure_tests", 1.0);
+  fork_scan_ = scan_;  // this scan: the rival applies it without the closure
   EkfSlam rival = *this;
   rival.blocks_closures_ = true;
   std::vector<int> rival_target = target;
@@ -54,6 +55,7 @@ void EkfSlam::StartClosureTest(const LandmarkEvent& event, const std::vector<Eig
 void EkfSlam::StartClosureTestAtMerge(double t_s) {
   uncertain_merge_pending_ = false;
   Record(t_s, "closure_tests", 1.0);
+  fork_scan_ = scan_;  // the next scan: this one's assignments were made before the merge
   EkfSlam rival = *this;
   rival.blocks_closures_ = true;
   closure_rival_.push_back(std::move(rival));
@@ -83,9 +85,11 @@ void EkfSlam::ContinueClosureTest(const LandmarkEvent& event) {
 void EkfSlam::EndClosureTest(bool keep_closure, double t_s) {
   const double log_ratio = closure_log_ratio_;
   if (!keep_closure) {
+    const int fork = fork_scan_;
     EkfSlam rival = std::move(closure_rival_.front());
     rival.blocks_closures_ = false;
     *this = std::move(rival);  // its own history, from the fork on without the closure
+    revised_from_scan_ = fork;  // its keys there may name other landmarks (both numbered from one counter)
   }
   closure_rival_.clear();
   closure_log_ratio_ = 0.0;

@@ -1,5 +1,8 @@
 #include "slam/graphslam.hpp"
 
+#include <algorithm>
+#include <iterator>
+
 #include "core/odometry_model.hpp"
 #include "core/chi_square.hpp"
 #include "slam/range_bearing.hpp"
@@ -26,17 +29,7 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
 }
 
-namespace {
-// The front end's keys name the graph's landmarks scan by scan; a closure test that ended
-// in its rival branch would rename those of the scans it spanned. graphslam revises the
-// association in the smoother instead (smoother_merges).
-EkfSlamConfig FrontEndConfig(EkfSlamConfig c) {
-  c.closure_test = false;
-  return c;
-}
-}  // namespace
-
-GraphSlam::GraphSlam(const GraphSlamConfig& config) : config_(config), frontend_(FrontEndConfig(config.frontend)) {}
+GraphSlam::GraphSlam(const GraphSlamConfig& config) : config_(config), frontend_(config.frontend) {}
 
 void GraphSlam::Start(const StreamHeader& header) {
   frontend_.Start(header);
@@ -55,6 +48,9 @@ void GraphSlam::Start(const StreamHeader& header) {
   split_ = {};
   dropped_.clear();
   scan_keyframe_.clear();
+  scan_t_s_.clear();
+  scan_first_observation_.clear();
+  scan_z_.clear();
   T_keyframe_robot_ = SE2();
   covariance_since_keyframe_.setZero();
   steps_since_keyframe_ = 0;
@@ -106,19 +102,52 @@ void GraphSlam::AddKeyframe(double t_s) {
 void GraphSlam::OnLandmarks(const LandmarkEvent& event) {
   const std::vector<int> keys = frontend_.ProcessLandmarks(event);
   if (WantKeyframe()) AddKeyframe(event.t_s);
-  scan_keyframe_.push_back(static_cast<int>(graph_.poses.size()) - 1);
-  if (steps_since_keyframe_ > 0) {  // between keyframes: the scan is not used
-    ++skipped_scans_;
-    return;
-  }
   const int keyframe = static_cast<int>(graph_.poses.size()) - 1;
-  for (size_t i = 0; i < keys.size(); ++i)
-    if (keys[i] >= 0)
-      graph_.observations.push_back({keyframe, keys[i], {event.observations[i].range_m, event.observations[i].bearing_rad}});
-  if (config_.solve_every_keyframes > 0 && keyframe % config_.solve_every_keyframes == 0) {
+  scan_keyframe_.push_back(keyframe);
+  scan_t_s_.push_back(event.t_s);
+  scan_first_observation_.push_back(graph_.observations.size());
+  scan_z_.emplace_back();
+  const bool used = steps_since_keyframe_ == 0;  // between keyframes a scan is not used
+  if (used) {
+    for (const LandmarkObservation& o : event.observations) scan_z_.back().emplace_back(o.range_m, o.bearing_rad);
+    for (size_t i = 0; i < keys.size(); ++i)
+      if (keys[i] >= 0) graph_.observations.push_back({keyframe, keys[i], scan_z_.back()[i]});
+  } else {
+    ++skipped_scans_;
+  }
+  if (frontend_.revised_from_scan() >= 0) RebuildFromScan(frontend_.revised_from_scan(), frontend_.partial_estimate());
+  if (used && config_.solve_every_keyframes > 0 && keyframe % config_.solve_every_keyframes == 0) {
     const LandmarkGraphSolution s = Solve(false);
     estimate_.diagnostics["solver_iterations"].emplace_back(event.t_s, s.iterations);
   }
+}
+
+void GraphSlam::RebuildFromScan(int from, const Estimate& front) {
+  // Both branches of the test numbered their new landmarks from one counter, so the losing
+  // branch's keys may name other landmarks in the winner: every observation of the scans
+  // since the fork is taken again from the winner's assignments (in scan order).
+  graph_.observations.resize(scan_first_observation_.at(static_cast<size_t>(from)));
+  const std::vector<ObservationAssignment>& a = front.observation_assignments;
+  auto it = std::lower_bound(a.begin(), a.end(), from, [](const ObservationAssignment& x, int s) { return x.scan < s; });
+  for (size_t scan = static_cast<size_t>(from); scan < scan_keyframe_.size(); ++scan) {
+    scan_first_observation_[scan] = graph_.observations.size();
+    for (; it != a.end() && it->scan == static_cast<int>(scan); ++it)
+      if (it->landmark >= 0 && !scan_z_[scan].empty())
+        graph_.observations.push_back({scan_keyframe_[scan], it->landmark, scan_z_[scan].at(static_cast<size_t>(it->index))});
+  }
+  // Keyframes made since the fork start from the winner's filtered poses (the front end's
+  // guess; with periodic solves the guess is the solved graph's and stays).
+  if (config_.solve_every_keyframes == 0) {
+    const double t_fork = scan_t_s_[static_cast<size_t>(from)];
+    const std::vector<PoseEstimate>& trajectory = front.trajectory;
+    for (size_t k = 1; k < graph_.poses.size(); ++k) {
+      if (keyframe_t_s_[k] < t_fork) continue;
+      auto p = std::upper_bound(trajectory.begin(), trajectory.end(), keyframe_t_s_[k],
+                                [](double t, const PoseEstimate& q) { return t < q.t_s; });
+      if (p != trajectory.begin()) graph_.poses[k] = std::prev(p)->pose;
+    }
+  }
+  solved_landmarks_.clear();  // keyed by names that may now mean other landmarks
 }
 
 int GraphSlam::GraphKey(int frontend_key) const {
@@ -210,7 +239,8 @@ int GraphSlam::MergeInSmoother(LandmarkGraphSolution& s) {
 }
 
 Estimate GraphSlam::Finish() {
-  const Estimate front = frontend_.Finish();
+  const Estimate front = frontend_.Finish();  // ends a running closure test by the scans so far
+  if (frontend_.revised_from_scan() >= 0) RebuildFromScan(frontend_.revised_from_scan(), front);
   LandmarkGraphSolution s;
   int merges = 0;
   bool skipped = false;

@@ -67,6 +67,9 @@ class GraphSlam : public SlamModule {
   int MergeInSmoother(LandmarkGraphSolution& s);
   /// The key a front-end key's observations belong to in the graph (front-end and smoother merges).
   int GraphKey(int frontend_key) const;
+  /// The front end's closure test ended in its rival: the observations of scans `from`.. and
+  /// the guesses of the keyframes since are rebuilt from the winner's output `front`.
+  void RebuildFromScan(int from, const Estimate& front);
 
   GraphSlamConfig config_;
   EkfSlam frontend_;
@@ -81,6 +84,9 @@ class GraphSlam : public SlamModule {
   ReobservationSplit split_;         ///< landmarks split where re-observed after leaving view (Finish)
   std::set<int> dropped_;            ///< split-off segments seen once and merged with nothing: not output
   std::vector<int> scan_keyframe_;   ///< per landmark scan, the keyframe it was attached to or followed
+  std::vector<double> scan_t_s_;     ///< per landmark scan, its time
+  std::vector<size_t> scan_first_observation_;  ///< per landmark scan, where its observations start in graph_.observations
+  std::vector<std::vector<Eigen::Vector2d>> scan_z_;  ///< per landmark scan, its (range, bearing) if used (else empty)
   // Odometry since the last keyframe: relative pose, its covariance, steps and travel.
   SE2 T_keyframe_robot_;
   Eigen::Matrix3d covariance_since_keyframe_ = Eigen::Matrix3d::Zero();
