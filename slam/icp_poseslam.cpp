@@ -67,6 +67,7 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("loop_region_overlap_m", c.loop_region_passes.overlap_m, "m", "region: a pass's point with an admitted point this close is in their overlap", Above(0));
   b.Bind("loop_region_min_overlap", c.loop_region_passes.min_overlap_fraction, "-", "region: a pass must overlap the admitted ones with this fraction of its points (and score loop_min_score there)");
   b.Bind("loop_region_min_passes", c.loop_region_min_passes, "-", "region: searched only when this many passes are admitted", AtLeast(1));
+  b.Bind("loop_region_max_search_radius_m", c.loop_region_max_search_radius_m, "m", "region: search radius cap (0 = loop_max_search_radius_m)", AtLeast(0));
   b.Bind("solve_every_keyframes", c.solve_every_keyframes, "-", "re-solve pending small closures after this many keyframes", AtLeast(1));
   b.Bind("solve_innovation_m", c.solve_innovation_m, "m", "a closure this far off the estimate is solved at once");
   b.Bind("loop_max_rms_m", c.loop.max_rms_m, "m", "loop ICP fitness: max RMS residual");

@@ -87,6 +87,7 @@ struct IcpPoseSlamConfig {
   bool loop_region = false;
   RegionConfig loop_region_passes;       ///< overlap radius and fraction (min_agreement, sigma: from loop_min_score, loop_table)
   int loop_region_min_passes = 2;        ///< the region search runs only when this many passes are admitted
+  double loop_region_max_search_radius_m = 0.0;  ///< [m] the region search's radius cap (0 = loop_max_search_radius_m)
   int solve_every_keyframes = 20;        ///< re-solve pending small closures after this many keyframes
   double solve_innovation_m = 0.05;      ///< [m] a closure this far off the estimate is solved at once
   RobustKernel loop_kernel = RobustKernel::kDcs;  ///< on loop edges only

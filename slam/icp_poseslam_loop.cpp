@@ -60,11 +60,13 @@ bool IcpPoseSlam::CloseLoopInRegion(const std::vector<Eigen::Matrix3d>& relative
   const double reach_m = ranges[ranges.size() / 2];
   // Members: old keyframes (path gap >= min_travel) within reach + their window of the new one.
   const Eigen::Vector2d here = graph_.poses.back().translation();
+  LoopClosureConfig window = config_.loop;
+  if (config_.loop_region_max_search_radius_m > 0) window.max_search_radius_m = config_.loop_region_max_search_radius_m;
   // The robot's own trail is no loop: the keyframes since it was last outside the region
   // (farther than reach + window from here) are not members.
   auto in_reach = [&](int j, double* d, double* radius) {
     const size_t uj = static_cast<size_t>(j);
-    *radius = LoopWindow(&relative_cov[uj], path[static_cast<size_t>(k)] - path[uj], config_.loop).first;
+    *radius = LoopWindow(&relative_cov[uj], path[static_cast<size_t>(k)] - path[uj], window).first;
     *d = (graph_.poses[uj].translation() - here).norm();
     return *d <= reach_m + *radius;
   };
@@ -95,7 +97,7 @@ bool IcpPoseSlam::CloseLoopInRegion(const std::vector<Eigen::Matrix3d>& relative
   // The target in the anchor's frame, cropped to where the new scan can land: the box of its
   // points at the guess, widened by the window and the score's reach (3 sigma).
   const auto [radius, angle] = LoopWindow(&relative_cov[static_cast<size_t>(anchor)],
-                                          path[static_cast<size_t>(k)] - path[static_cast<size_t>(anchor)], config_.loop);
+                                          path[static_cast<size_t>(k)] - path[static_cast<size_t>(anchor)], window);
   const SE2& T_w_a = graph_.poses[static_cast<size_t>(anchor)];
   const SE2 guess = Between(T_w_a, graph_.poses.back());
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
