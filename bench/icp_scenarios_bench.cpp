@@ -5,7 +5,8 @@
 // after applying the measured relative pose), and the real-time factor of the module
 // (stream duration over wall time, and over process CPU time).
 //   ./build/bench/icp_scenarios_bench [seeds=10] [scenario ...] [FIELD=VALUE ...]
-// FIELD=VALUE pairs override both ICP modules' parameters (e.g. robust_kernel=huber).
+// FIELD=VALUE pairs override both ICP modules' parameters (e.g. robust_kernel=huber);
+// icp-poseslam.FIELD=VALUE only icp-poseslam's (e.g. icp-poseslam.loop_region=true).
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -48,11 +49,12 @@ int FalseAccepted(const Estimate& e, const Stream& s) {
 int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 10;
   std::vector<std::string> scenarios;
-  ParamOverrides overrides;
+  ParamOverrides overrides, poseslam_overrides;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto eq = arg.find('=');
     if (eq == std::string::npos) scenarios.push_back(arg);
+    else if (arg.rfind("icp-poseslam.", 0) == 0) poseslam_overrides[arg.substr(13, eq - 13)] = arg.substr(eq + 1);
     else overrides[arg.substr(0, eq)] = arg.substr(eq + 1);
   }
   if (scenarios.empty()) scenarios = {"loop", "tunnel", "symmetric"};
@@ -65,7 +67,9 @@ int main(int argc, char** argv) {
     for (int seed = 0; seed < seeds; ++seed) {
       const Stream s = Simulate(scenario, static_cast<std::uint64_t>(seed));
       for (const auto& m : modules) {
-        auto module = m.create(m.name == "odometry" ? ParamOverrides{} : overrides);
+        ParamOverrides o = m.name == "odometry" ? ParamOverrides{} : overrides;
+        if (m.name == "icp-poseslam") o.insert(poseslam_overrides.begin(), poseslam_overrides.end());
+        auto module = m.create(o);
         const auto t0 = std::chrono::steady_clock::now();
         const std::clock_t c0 = std::clock();
         const Estimate e = Replay(*module, s);

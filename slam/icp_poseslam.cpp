@@ -63,6 +63,11 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("loop_runner_up_radius_m", c.loop_runner_up_radius_m, "m", "ambiguity: runner-up match farther than this from the best");
   b.Bind("loop_max_runner_up_ratio", c.loop_max_runner_up_ratio, "-", "ambiguity: runner-up score / best score must stay below this");
   b.Bind("loop_max_match_shift_m", c.loop_max_match_shift_m, "m", "ICP may move the correlative match at most this far");
+  b.Bind("loop_region", c.loop_region, "-", "region loop search where no candidate closed: old keyframes within the scan's median range, passes merged where they agree");
+  b.Bind("loop_region_overlap_m", c.loop_region_passes.overlap_m, "m", "region: a pass's point with an admitted point this close is in their overlap", Above(0));
+  b.Bind("loop_region_min_overlap", c.loop_region_passes.min_overlap_fraction, "-", "region: a pass must overlap the admitted ones with this fraction of its points (and score loop_min_score there)");
+  b.Bind("loop_region_min_passes", c.loop_region_min_passes, "-", "region: searched only when this many passes are admitted", AtLeast(1));
+  b.Bind("loop_region_max_search_radius_m", c.loop_region_max_search_radius_m, "m", "region: search radius cap (0 = loop_max_search_radius_m)", AtLeast(0));
   b.Bind("solve_every_keyframes", c.solve_every_keyframes, "-", "re-solve pending small closures after this many keyframes", AtLeast(1));
   b.Bind("solve_innovation_m", c.solve_innovation_m, "m", "a closure this far off the estimate is solved at once");
   b.Bind("loop_max_rms_m", c.loop.max_rms_m, "m", "loop ICP fitness: max RMS residual");
@@ -274,42 +279,13 @@ void IcpPoseSlam::CloseLoops(double t_s) {
   const std::vector<Eigen::Matrix3d> rel = RelativeCovariances(graph_, k, use_edge, 2.0 * cap_sigma * cap_sigma);
   bool added = false;
   double innovation_m = 0.0;
-  const std::vector<Eigen::Vector2d>& source = keyframes_.back().points.points;
   for (const LoopCandidate& c : FindLoopCandidates(graph_.poses, path, k, config_.loop, rel)) {
     const LoopTarget& target = LoopTargetFor(c.keyframe);
-    const SE2 guess = Between(graph_.poses[static_cast<size_t>(c.keyframe)], graph_.poses.back());
-    CorrelativeSearchConfig search;
-    search.linear_window_m = c.radius_m;
-    search.angular_window_deg = c.angle_rad / kDegToRad;
-    search.min_score = config_.loop_min_score;
-    search.runner_up_radius_m = config_.loop_runner_up_radius_m;
-    const CorrelativeMatch m = MatchCorrelative(target.table, source, guess, search);
-    ++proposed_;
-    const double t_old = keyframes_[static_cast<size_t>(c.keyframe)].t_s;
-    if (!m.found || m.runner_up_score >= config_.loop_max_runner_up_ratio * m.score) {  // no match, or ambiguous
-      estimate_.loop_closures.push_back({t_old, keyframes_.back().t_s, guess, false});
-      continue;
-    }
-    const IcpResult r = RegisterIcp(source, target.cloud, m.T_map_source, loop_icp_);
-    LoopVerification v = VerifyLoopClosure(r, guess, c.radius_m + config_.loop_max_match_shift_m, config_.loop);
-    if (v.accepted && (r.T_target_source.translation() - m.T_map_source.translation()).norm() > config_.loop_max_match_shift_m)
-      v = {false, "icp left the correlative match"};
-    estimate_.loop_closures.push_back({t_old, keyframes_.back().t_s, r.T_target_source, v.accepted});
-    if (!v.accepted) continue;
-    PoseGraphEdge e;
-    e.from = c.keyframe;
-    e.to = k;
-    e.T_from_to = r.T_target_source;
-    e.information = config_.edge_information == EdgeInformationSource::kFixed
-                        ? FixedInformation(config_.fixed_sigma_xy_m, config_.fixed_sigma_theta_deg * kDegToRad)
-                        : IcpEdgeInformation(r, 1e6 * Eigen::Matrix3d::Identity(), Caps());
-    e.loop_closure = true;
-    graph_.edges.push_back(e);
-    loop_record_of_edge_.push_back(static_cast<int>(estimate_.loop_closures.size()) - 1);
-    innovation_m = (r.T_target_source.translation() - guess.translation()).norm();
-    added = true;
-    break;  // one closure per keyframe; the solve below moves the rest
+    added = TryLoop(c.keyframe, target.table, [&]() -> const IcpTarget& { return target.cloud; }, c.radius_m,
+                    c.angle_rad, &innovation_m);
+    if (added) break;  // one closure per keyframe; the solve below moves the rest
   }
+  if (!added && config_.loop_region) added = CloseLoopInRegion(rel, path, &innovation_m);
   estimate_.diagnostics["loop_closures_proposed"].emplace_back(t_s, proposed_);
   pending_closures_ = pending_closures_ || added;
   ++keyframes_since_solve_;

@@ -11,6 +11,7 @@
 // pose's covariance relative to its keyframe (the ICP edge covariance at scans, grown by
 // the odometry model between them). Both rest on the capped, Hessian-based ICP
 // information, so they are as optimistic as that is (Censi 2007).
+#include <functional>
 #include <optional>
 
 #include "core/slam_module.hpp"
@@ -19,6 +20,7 @@
 #include "slam/edge_information.hpp"
 #include "slam/icp_params.hpp"
 #include "slam/loop_closure.hpp"
+#include "slam/loop_region.hpp"
 #include "slam/occupancy_grid_builder.hpp"
 #include "slam/pose_graph.hpp"
 #include "slam/scan_points.hpp"
@@ -77,6 +79,15 @@ struct IcpPoseSlamConfig {
   double loop_runner_up_radius_m = 0.5;  ///< [m] ambiguity: best score farther than this from the match ...
   double loop_max_runner_up_ratio = 0.95;  ///< ... must stay below this fraction of the match's score
   double loop_max_match_shift_m = 0.1;   ///< [m] ICP may move the correlative match at most this far
+  /// Region loop search (slam/loop_region.hpp): at a keyframe where no candidate's submap
+  /// closed a loop, the target is the union of the old keyframes within the new scan's
+  /// median range (plus each one's search window) of it, admitted pass by pass where the
+  /// passes agree under the estimate (score >= loop_min_score over their overlap); matched in
+  /// the window of the nearest of them (the anchor), verified as any closure.
+  bool loop_region = false;
+  RegionConfig loop_region_passes;       ///< overlap radius and fraction (min_agreement, sigma: from loop_min_score, loop_table)
+  int loop_region_min_passes = 2;        ///< the region search runs only when this many passes are admitted
+  double loop_region_max_search_radius_m = 0.0;  ///< [m] the region search's radius cap (0 = loop_max_search_radius_m)
   int solve_every_keyframes = 20;        ///< re-solve pending small closures after this many keyframes
   double solve_innovation_m = 0.05;      ///< [m] a closure this far off the estimate is solved at once
   RobustKernel loop_kernel = RobustKernel::kDcs;  ///< on loop edges only
@@ -120,6 +131,14 @@ class IcpPoseSlam : public SlamModule {
   /// edge_icp: the ICP result joining it to the previous keyframe, or null (odometry edge).
   void AddKeyframe(const LaserScanEvent& scan, ScanPoints points, const IcpResult* edge_icp);
   void CloseLoops(double t_s);
+  /// Correlative match of the newest keyframe against `table` (frame of keyframe `from`) in
+  /// the window, ICP refinement against cloud() and verification; on success a loop edge
+  /// from -> newest is added and its innovation returned. (slam/icp_poseslam_loop.cpp)
+  bool TryLoop(int from, const ScoreTable& table, const std::function<const IcpTarget&()>& cloud, double radius_m,
+               double angle_rad, double* innovation_m);
+  /// The region search (slam/loop_region.hpp) at the newest keyframe. (slam/icp_poseslam_loop.cpp)
+  bool CloseLoopInRegion(const std::vector<Eigen::Matrix3d>& relative_cov, const std::vector<double>& path,
+                         double* innovation_m);
   const LoopTarget& LoopTargetFor(int keyframe);
   PoseGraphSolveResult Solve(bool marginals = false);
   InformationCaps Caps() const;

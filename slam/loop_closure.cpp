@@ -64,27 +64,32 @@ std::vector<Eigen::Matrix3d> RelativeCovariances(const PoseGraph& graph, int que
   return cov;
 }
 
+std::pair<double, double> LoopWindow(const Eigen::Matrix3d* relative_cov, double travel_m,
+                                     const LoopClosureConfig& config) {
+  constexpr double kDegToRad = M_PI / 180.0;
+  double sigma_xy = 0.0, sigma_theta = 0.0;
+  if (relative_cov) {
+    const Eigen::Matrix2d P = relative_cov->topLeftCorner<2, 2>();
+    sigma_xy = std::sqrt(std::max(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(P, Eigen::EigenvaluesOnly).eigenvalues()(1), 0.0));
+    sigma_theta = std::sqrt(std::max((*relative_cov)(2, 2), 0.0));
+  }
+  const double radius = std::min(config.search_radius_m + config.radius_per_travel * travel_m + config.window_sigmas * sigma_xy,
+                                 config.max_search_radius_m);
+  const double angle = std::min(config.search_angle_deg * kDegToRad + config.window_sigmas * sigma_theta,
+                                config.max_search_angle_deg * kDegToRad);
+  return {radius, angle};
+}
+
 std::vector<LoopCandidate> FindLoopCandidates(const std::vector<SE2>& poses, const std::vector<double>& path_m,
                                               int query, const LoopClosureConfig& config,
                                               const std::vector<Eigen::Matrix3d>& relative_cov) {
-  constexpr double kDegToRad = M_PI / 180.0;
   std::vector<LoopCandidate> all;
   const size_t q = static_cast<size_t>(query);
   for (int j = 0; j < query; ++j) {
     const size_t uj = static_cast<size_t>(j);
     const double travel = path_m[q] - path_m[uj];
     if (travel < config.min_travel_m) continue;
-    double sigma_xy = 0.0, sigma_theta = 0.0;
-    if (!relative_cov.empty()) {
-      const Eigen::Matrix2d P = relative_cov[uj].topLeftCorner<2, 2>();
-      sigma_xy = std::sqrt(std::max(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(P, Eigen::EigenvaluesOnly).eigenvalues()(1), 0.0));
-      sigma_theta = std::sqrt(std::max(relative_cov[uj](2, 2), 0.0));
-    }
-    const double radius = std::min(config.search_radius_m + config.radius_per_travel * travel +
-                                       config.window_sigmas * sigma_xy,
-                                   config.max_search_radius_m);
-    const double angle = std::min(config.search_angle_deg * kDegToRad + config.window_sigmas * sigma_theta,
-                                  config.max_search_angle_deg * kDegToRad);
+    const auto [radius, angle] = LoopWindow(relative_cov.empty() ? nullptr : &relative_cov[uj], travel, config);
     const double d = (poses[q].translation() - poses[uj].translation()).norm();
     if (d <= radius) all.push_back({j, d, radius, angle});
   }

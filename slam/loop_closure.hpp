@@ -5,6 +5,7 @@
 // T_j_query composed along the most certain path of edges); each is matched globally in
 // that window (slam/correlative_matcher.hpp), refined by ICP and verified.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slam/icp.hpp"
@@ -43,6 +44,13 @@ std::vector<Eigen::Matrix3d> RelativeCovariances(const PoseGraph& graph, int que
 
 /// Covariance of T^-1 given T ~ (T, cov) over (x, y, theta) coordinates (first order).
 Eigen::Matrix3d InverseCovariance(const SE2& T, const Eigen::Matrix3d& cov);
+
+/// Search window (linear radius [m], angle [rad]) for a pair travel metres of path apart
+/// whose relative pose has covariance relative_cov (null: no uncertainty term):
+/// search_radius_m + radius_per_travel * travel + window_sigmas * sigma (sigma: the largest
+/// standard deviation of the position block), capped; the same for the angle.
+std::pair<double, double> LoopWindow(const Eigen::Matrix3d* relative_cov, double travel_m,
+                                     const LoopClosureConfig& config);
 
 /// Earlier keyframes j near `query` (index into positions), nearest first, at most
 /// max_candidates, no two closer than min_keyframe_gap. The window of j: search_radius_m +
