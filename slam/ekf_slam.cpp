@@ -80,8 +80,6 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
 }
 
-void BindEkfSlamModuleParams(EkfSlamConfig& c, ParamBinder& b) { BindParams(c, b); }
-
 EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {
   // ekf-slam's own settings, and graphslam's front end (same field names).
   auto fail = [](const std::string& field, const std::string& problem, const std::string& fix) {
@@ -352,7 +350,7 @@ Estimate EkfSlam::Finish() {
 ModuleInfo EkfSlamModule() {
   return MakeModuleInfo<EkfSlam, EkfSlamConfig>(
       "ekf-slam", "EKF-SLAM over point landmarks (known ids, nearest neighbour or JCBB; optional FEJ)",
-      {.odometry = true, .landmarks = true}, &BindEkfSlamModuleParams);
+      {.odometry = true, .landmarks = true}, &BindParams);
 }
 
 }  // namespace slambox

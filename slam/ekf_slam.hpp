@@ -77,8 +77,6 @@ struct EkfSlamConfig {
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
 };
 void BindParams(EkfSlamConfig& c, ParamBinder& b);
-/// The `ekf-slam` module's parameters: BindParams (named, for MakeModuleInfo; BindParams is overloaded).
-void BindEkfSlamModuleParams(EkfSlamConfig& c, ParamBinder& b);
 
 /// Bookkeeping of one landmark in the state (same order as the state's landmarks).
 struct LandmarkTrack {
@@ -106,7 +104,7 @@ class EkfSlam : public SlamModule {
   /// Processes a scan and returns per observation the key of the landmark it updated or
   /// created, or -1 if it was discarded (clutter, ambiguous). With closure_test the keys are
   /// those of the branch that made the scan's closure; a test that ends in its rival renames
-  /// them (graphslam, which keeps them, runs its front end without the test).
+  /// them (revised_from_scan says from which scan on).
   std::vector<int> ProcessLandmarks(const LandmarkEvent& event);
   /// The first scan (index among the landmark events) whose keys the last ProcessLandmarks
   /// revised, or -1: a closure test ended in its rival, whose keys, poses and landmarks from

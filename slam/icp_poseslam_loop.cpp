@@ -2,6 +2,8 @@
 // slam/loop_region.hpp); the rest of the module is in slam/icp_poseslam.cpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "slam/icp_poseslam.hpp"
 
