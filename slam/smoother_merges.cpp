@@ -2,6 +2,7 @@
 
 #include "slam/data_association.hpp"
 #include "slam/landmark_merge.hpp"
+#include "slam/pairing_likelihood.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -28,24 +29,15 @@ double ExpectedOthersInGate(const Eigen::Matrix2d& C, const MergeSearchSettings&
   return ExpectedInGate(C, s.gate_chi2, s.density_per_m2);
 }
 
-struct Hypothesis {
-  std::vector<int> candidates;  ///< indices into the candidate list, in the order taken
-  double log_all_wrong = 0.0;
-  double joint_d2 = 0.0;
-};
-
-/// Grows a hypothesis from `seed` (see the header).
-Hypothesis Grow(const std::vector<Candidate>& candidates, int seed, Eigen::VectorXd x, Eigen::MatrixXd P,
-                const MergeSearchSettings& s) {
-  Hypothesis h;
+/// Grows a hypothesis from `seed` (see the header): its pairs (involved indices), in order.
+std::vector<std::pair<int, int>> Grow(const std::vector<Candidate>& candidates, int seed, Eigen::VectorXd x,
+                                      Eigen::MatrixXd P, const MergeSearchSettings& s) {
+  std::vector<std::pair<int, int>> taken;
   std::vector<bool> used(x.size() / 2, false);
   int next = seed;
   while (next >= 0) {
     const Candidate& c = candidates[next];
-    const PointDifference p = Difference(x, P, c.a, c.b);
-    h.candidates.push_back(next);
-    h.log_all_wrong += std::log(std::min(1.0, ExpectedOthersInGate(p.C, s)));
-    h.joint_d2 += p.d2;
+    taken.emplace_back(c.a, c.b);
     used[c.a] = used[c.b] = true;
     if (!ConditionOnEqual(x, P, 2 * c.a, 2 * c.b)) break;  // a candidate's d^2 is finite: C was positive definite
     next = -1;
@@ -57,7 +49,7 @@ Hypothesis Grow(const std::vector<Candidate>& candidates, int seed, Eigen::Vecto
       if (q.d2 < s.gate_chi2 && area < best) best = area, next = static_cast<int>(k);
     }
   }
-  return h;
+  return taken;
 }
 
 double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -122,9 +114,9 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
   for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
   std::stable_sort(order.begin(), order.end(), [&](int u, int v) { return candidates[u].d2 < candidates[v].d2; });
 
-  const auto to_merges = [&](const std::vector<int>& taken) {
+  const auto to_merges = [&](const std::vector<std::pair<int, int>>& taken) {  // involved indices -> keys
     std::vector<std::pair<int, int>> merges;
-    for (const int k : taken) merges.emplace_back(L.keys[involved[candidates[k].a]], L.keys[involved[candidates[k].b]]);
+    for (const auto& [a, b] : taken) merges.emplace_back(L.keys[involved[a]], L.keys[involved[b]]);
     std::sort(merges.begin(), merges.end());
     return merges;
   };
@@ -133,28 +125,33 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
   // loop closures are decided jointly only among what is left, so pairs that are certain
   // anyway are no evidence for any hypothesis.
   const double log_threshold = std::log(s.fake_probability);
-  std::vector<int> confident;
+  std::vector<std::pair<int, int>> confident;
   std::vector<bool> used(m, false);
   for (const int k : order) {
     const Candidate& c = candidates[k];
     if (used[c.a] || used[c.b]) continue;
     const PointDifference p = Difference(x, P, c.a, c.b);
     if (std::log(ExpectedOthersInGate(p.C, s)) >= log_threshold) continue;
-    confident.push_back(k);
+    confident.emplace_back(c.a, c.b);
     used[c.a] = used[c.b] = true;
   }
   if (!confident.empty()) return to_merges(confident);
-  // Otherwise every candidate seeds a hypothesis; the largest below the threshold wins
-  // (ties: the smaller joint d^2).
-  Hypothesis best;
+  // Otherwise every candidate seeds a hypothesis, which keeps only the pairs it explains
+  // better with than without (slam/pairing_likelihood.hpp); of those below the threshold,
+  // the largest wins (ties: the more likely; with k equal the density's share cancels).
+  std::vector<std::pair<int, int>> best;
+  double best_log_ratio = -std::numeric_limits<double>::infinity();
   for (const int seed : order) {
-    const Hypothesis h = Grow(candidates, seed, x, P, s);
-    if (h.log_all_wrong >= log_threshold) continue;
-    if (h.candidates.size() > best.candidates.size() ||
-        (h.candidates.size() == best.candidates.size() && h.joint_d2 < best.joint_d2))
-      best = h;
+    const std::vector<std::pair<int, int>> kept =
+        DropUnexplainedPairs(x, P, Grow(candidates, seed, x, P, s), s.gate_chi2, s.density_per_m2);
+    const PairingLikelihood l = EvaluatePairing(x, P, kept, s.gate_chi2, s.density_per_m2);
+    double log_all_wrong = 0.0;  // log prod_i min(1, mu_i)
+    for (const double log_mu : l.log_expected_in_gate) log_all_wrong += std::min(0.0, log_mu);
+    if (kept.empty() || !l.valid || log_all_wrong >= log_threshold) continue;
+    if (kept.size() > best.size() || (kept.size() == best.size() && l.log_ratio > best_log_ratio))
+      best = kept, best_log_ratio = l.log_ratio;
   }
-  return to_merges(best.candidates);
+  return to_merges(best);
 }
 
 std::vector<std::pair<int, int>> UnchallengedPairings(const JointLandmarks& L,

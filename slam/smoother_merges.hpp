@@ -11,12 +11,21 @@
 //   accepted into the hypothesis if D_i^T C_i^-1 D_i < gate (the sum is the joint d^2),
 //   mu_i = density * pi gate sqrt(det C_i): the landmarks other than a expected in b's gate,
 //   P(every pair of the hypothesis is two distinct landmarks) = prod_i min(1, mu_i).
-// Hypotheses grow greedily (smallest conditional d^2 next, each landmark in one pair) from
-// every candidate pair as the seed; the largest whose chance of being all wrong is below
-// the gate's own miss probability is taken (ties: the smaller joint d^2). Two landmarks
-// seen in one scan are two landmarks and never a pair. The density is the map's own
-// (landmarks over the area of their convex hull), the threshold the merge gate's: no new
-// constant.
+// Hypotheses grow greedily (the gated pair with the smallest conditional gate area next,
+// each landmark in one pair) from every candidate pair as the seed. Growth takes any pair
+// inside the gate, and a pair whose gate holds other landmarks (mu_i >= 1) costs the test
+// below nothing, so each grown hypothesis then drops, worst first, every pair it explains
+// worse than two landmarks would (its likelihood factor given all the others below 1,
+// slam/pairing_likelihood.hpp). Of the hypotheses whose chance of being all wrong is below
+// the gate's own miss probability, the largest is taken (JCBB's criterion), ties by the
+// likelihood against "no merges", N(D; 0, C) / density^k (with k equal, N(D; 0, C): the
+// joint d^2 and the log det C that d^2 alone ignores). The likelihood does not rank
+// hypotheses of different size: C is linearized before any merge, and along a lap the
+// true pairs far from the seed get conditional d^2 of 20-30 (`forest` seed 65: the right
+// 31-pair hypothesis scores log 150, a 28-pair one with a wrong pair log 161). Two
+// landmarks seen in one scan are two landmarks and never a pair. The density is the
+// map's own (landmarks over the area of their convex hull), the threshold the merge
+// gate's: no new constant.
 #include <Eigen/Core>
 #include <set>
 #include <utility>

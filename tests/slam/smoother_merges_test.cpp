@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "slam/range_bearing.hpp"
@@ -112,6 +113,43 @@ TEST(FindJointMerges, ADuplicatedLapMergesJointlyWhereNoPairAloneWould) {
   lone.mean = one.mean.head(8);
   lone.covariance = one.covariance.topLeftCorner(8, 8);
   EXPECT_TRUE(FindJointMerges(lone, {}, s).empty());
+}
+
+TEST(FindJointMerges, LeavesOutAPairTheHypothesisExplainsWorseThanTwoLandmarks) {
+  // The duplicated lap, plus a lap-1 landmark (key 6) and a lap-2 one (key 106) at the ends
+  // of their laps' open chains, sigma 1.1 m each and independent of the rest: 3.5 m apart,
+  // C = 2.42 I, d^2 = 5.06 < gate, so every hypothesis can take them as a seventh pair. Its
+  // gate expects mu = 0.075 pi 9.21 2.42 = 5.3 other trees: no evidence against the
+  // hypothesis either way (min(1, mu) = 1), so by size it would be taken; as a likelihood
+  // factor it is exp(-5.06 / 2) 9.21 / (2 mu) = 0.07 < 1 (seed 121 of `forest` had such a
+  // pair: 29 pairs, this one wrong, d^2 5.5, mu 0.7).
+  JointLandmarks six = TwoLaps(kTrees, 2.0);
+  const int n = static_cast<int>(six.keys.size());
+  JointLandmarks L;
+  L.keys = six.keys;
+  L.keys.insert(L.keys.begin() + n / 2, 6);
+  L.keys.push_back(106);
+  L.mean.resize(2 * (n + 2));
+  L.covariance = Eigen::MatrixXd::Zero(2 * (n + 2), 2 * (n + 2));
+  const std::vector<int> from = {0, 1, 2, 3, 4, 5, -1, 6, 7, 8, 9, 10, 11, -1};  // index in `six`, -1: new
+  for (int i = 0; i < n + 2; ++i) {
+    if (from[i] < 0) {
+      L.mean.segment<2>(2 * i) = i < n / 2 + 1 ? Eigen::Vector2d(20.0, 0.0) : Eigen::Vector2d(23.5, 0.0);
+      L.covariance.block<2, 2>(2 * i, 2 * i) = 1.21 * Eigen::Matrix2d::Identity();
+      continue;
+    }
+    L.mean.segment<2>(2 * i) = six.mean.segment<2>(2 * from[i]);
+    for (int j = 0; j < n + 2; ++j)
+      if (from[j] >= 0) L.covariance.block<2, 2>(2 * i, 2 * j) = six.covariance.block<2, 2>(2 * from[i], 2 * from[j]);
+  }
+  const MergeSearchSettings s{kGate, kFake, 6.0 / 80.0};
+  std::vector<std::pair<int, int>> expected;
+  for (int i = 0; i < 6; ++i) expected.emplace_back(i, 100 + i);
+  EXPECT_EQ(FindJointMerges(L, {}, s), expected);
+  // Twenty times sparser (mu 0.27), the same pair is more likely one landmark than two.
+  expected.emplace_back(6, 106);
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(FindJointMerges(L, {}, {kGate, kFake, 6.0 / 80.0 / 20.0}), expected);
 }
 
 /// Robot poses along x at 0.2 m spacing (heading 0 unless changed), a 180 deg, 5 m
