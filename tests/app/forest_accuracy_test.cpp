@@ -71,6 +71,22 @@ Result RunForest(std::uint64_t seed) {
   return r;
 }
 
+struct GraphRun {
+  double ate = 0.0;
+  MapScore map;
+};
+
+/// graphslam alone on `forest` at `seed`, with module parameters `params`.
+GraphRun RunGraphSlam(std::uint64_t seed, const ParamOverrides& params = {}) {
+  const Scenario scenario = LoadScenario("forest");
+  const Stream s = Simulate(scenario, seed);
+  const Estimate graph = Replay(*FindModule("graphslam").create(params), s);
+  const GraphRun r{AteRmse(graph, s), ScoreMap(graph, scenario)};
+  std::printf("seed %lu: graphslam %.2f (%d spurious, %d duplicates)\n", static_cast<unsigned long>(seed), r.ate,
+              r.map.spurious, r.map.duplicates);
+  return r;
+}
+
 TEST(ForestAccuracy, UnknownIdsWithClutter) {
   for (std::uint64_t seed : {3u, 6u}) {
     const Result r = RunForest(seed);
@@ -182,12 +198,6 @@ TEST(ForestAccuracy, SmootherMergesRepairFalseLoopClosures) {
   }
 }
 
-}  // namespace
-}  // namespace slambox
-
-namespace slambox {
-namespace {
-
 TEST(ForestAccuracy, GraphSlamFrontEndTakesTheClosureTestsVerdict) {
   // graphslam's front end runs the closure test too; when a test ends in the rival branch,
   // the graph's observations of the scans since the fork are rebuilt from the winner's
@@ -195,22 +205,11 @@ TEST(ForestAccuracy, GraphSlamFrontEndTakesTheClosureTestsVerdict) {
   // may name other trees). Seed 45 (held out when the smoother merges were designed):
   // measured 0.24 m, 0 spurious; with the test off in the front end (as before) 5.61 m, 47
   // spurious: lap 2 mapped the park again. Bound: 1.5x the measured ATE.
-  const Scenario scenario = LoadScenario("forest");
-  const Stream s = Simulate(scenario, 45);
-  const Estimate graph = Replay(*FindModule("graphslam").create({}), s);
-  const double ate = AteRmse(graph, s);
-  std::printf("seed 45: graphslam %.2f\n", ate);
-  EXPECT_LT(ate, 0.36);
-  EXPECT_LE(ScoreMap(graph, scenario).spurious, 1);
-  const Estimate without = Replay(*FindModule("graphslam").create({{"closure_test", "false"}}), s);
-  EXPECT_GT(AteRmse(without, s), 5.0);
+  const GraphRun r = RunGraphSlam(45);
+  EXPECT_LT(r.ate, 0.36);
+  EXPECT_LE(r.map.spurious, 1);
+  EXPECT_GT(RunGraphSlam(45, {{"closure_test", "false"}}).ate, 5.0);
 }
-
-}  // namespace
-}  // namespace slambox
-
-namespace slambox {
-namespace {
 
 TEST(ForestAccuracy, SmootherMergesDropPairsTheirHypothesisExplainsWorse) {
   // Seed 121 (held out when the smoother merges were designed): the hypothesis taken in the
@@ -219,14 +218,9 @@ TEST(ForestAccuracy, SmootherMergesDropPairsTheirHypothesisExplainsWorse) {
   // picked by size it gave 2.24 m and 36 spurious landmarks. Dropping each pair whose
   // likelihood factor given the others is below 1 (slam/pairing_likelihood.hpp): measured
   // 0.28 m, 0 spurious (the same as without smoother merges). Bound: 1.5x the measured ATE.
-  const Scenario scenario = LoadScenario("forest");
-  const Stream s = Simulate(scenario, 121);
-  const Estimate graph = Replay(*FindModule("graphslam").create({}), s);
-  const double ate = AteRmse(graph, s);
-  std::printf("seed 121: graphslam %.2f\n", ate);
-  EXPECT_LT(ate, 0.42);
-  const MapScore map = ScoreMap(graph, scenario);
-  EXPECT_LE(map.spurious + map.duplicates, 1);
+  const GraphRun r = RunGraphSlam(121);
+  EXPECT_LT(r.ate, 0.42);
+  EXPECT_LE(r.map.spurious + r.map.duplicates, 1);
 }
 
 }  // namespace
