@@ -116,6 +116,9 @@ class EkfSlam : public SlamModule {
   const std::vector<LandmarkTrack>& tracks() const { return tracks_; }
   /// The key a landmark's observations now belong to: itself, or the landmark it was merged into.
   int ResolveKey(int key) const;
+  /// Every key this filter has issued is below this one (merged-away and deleted keys too:
+  /// ResolveKey still maps them, so a caller's own new keys must start here).
+  int next_key() const { return next_key_; }
 
  private:
   /// Update, new landmarks, existence, merges and bookkeeping of a scan whose association is decided.

@@ -248,8 +248,9 @@ Estimate GraphSlam::Finish() {
     // The front end's association, then every re-observation after leaving view split
     // off (slam/reobservation_split.hpp) and merged back jointly by the smoother.
     Solve(false);
-    int first_free_key = 0;
-    for (const auto& track : frontend_.tracks()) first_free_key = std::max(first_free_key, track.key + 1);
+    // Not a key the front end ever issued: a merged-away key still resolves to the landmark
+    // it was merged into (GraphKey), so a segment named by it would join that landmark.
+    int first_free_key = frontend_.next_key();
     for (const auto& o : graph_.observations) first_free_key = std::max(first_free_key, o.landmark + 1);
     const std::vector<RangeBearingConstraint> unsplit = graph_.observations;
     split_ = SplitAtReobservations(graph_, footprint_, AmbiguityTest(), first_free_key);

@@ -124,6 +124,7 @@ TEST(EkfSlamExistence, DuplicateOutsideTheNewLandmarkGateIsMerged) {
   s.Scan({{5.15, 0.0, -1}});
   ASSERT_EQ(s.ekf.tracks().size(), 1u);
   EXPECT_EQ(s.ekf.ResolveKey(1), 0);
+  EXPECT_EQ(s.ekf.next_key(), 2);  // key 1 is gone from tracks() but still resolves: never free again
   EXPECT_NEAR(s.ekf.state().Landmark(0).x(), 5.075, 1e-9);
   EXPECT_NEAR(s.ekf.state().Landmark(0).y(), 0.0, 1e-12);
   EXPECT_EQ(s.ekf.tracks()[0].sightings, 2);
