@@ -219,8 +219,9 @@ TEST(ForestAccuracy, SplitSegmentsNeverTakeAKeyTheFrontEndMergedAway) {
   // from the largest key still tracked + 1 = 57. Those segments' observations then resolved
   // to 24 and 25 (graphslam's GraphKey follows the front end's merges): wrong pairings the
   // split had just removed came back, the solve stopped at chi2 per residual 137 and the
-  // run ended 5.97 m off with 55 spurious landmarks (`landmark_spurious`; odometry 5.07 m). With new keys from
-  // the front end's key counter: measured 0.22 m, 0 spurious (known ids 0.22 m).
+  // run ended 5.97 m off with 55 spurious landmarks (`landmark_spurious`; odometry
+  // 5.07 m). With new keys from the front end's key counter: measured 0.22 m, 0 spurious
+  // (known ids 0.22 m).
   // Bound: 1.5x the measured ATE.
   const GraphRun r = RunGraphSlam(3, {}, {"sensors.landmarks.clutter_per_scan=0"});
   EXPECT_LT(r.ate, 0.34);
