@@ -119,6 +119,8 @@ class EkfSlam : public SlamModule {
   /// Every key this filter has issued is below this one (merged-away and deleted keys too:
   /// ResolveKey still maps them, so a caller's own new keys must start here).
   int next_key() const { return next_key_; }
+  /// [1/m^2] clutter plus new landmarks: the density of detections no mapped landmark explains.
+  double FakeDensity() const;
 
  private:
   /// Update, new landmarks, existence, merges and bookkeeping of a scan whose association is decided.
@@ -157,8 +159,6 @@ class EkfSlam : public SlamModule {
   double ScanLogLikelihoodOf(const std::vector<Eigen::Vector2d>& z) const;
   /// [1/m^2] real births per scan over the sensor's footprint (Reid's density of new targets).
   double NewLandmarkDensity() const;
-  /// [1/m^2] clutter plus new landmarks: the density of detections no mapped landmark explains.
-  double FakeDensity() const;
   bool SeenTogether(int key_a, int key_b) const { return co_observed_.count(std::minmax(key_a, key_b)) > 0; }
   void Record(double t_s, const std::string& name, double value) {
     estimate_.diagnostics[name].emplace_back(t_s, value);

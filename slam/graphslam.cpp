@@ -5,6 +5,7 @@
 
 #include "core/odometry_model.hpp"
 #include "core/chi_square.hpp"
+#include "slam/leftover_association.hpp"
 #include "slam/range_bearing.hpp"
 #include "slam/smoother_merges.hpp"
 
@@ -23,6 +24,10 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
   b.Bind("smoother_merges", c.smoother_merges, "-",
          "unknown ids: at the end, merge duplicate landmarks jointly under the smoother's marginals (gate and threshold "
          "from merge_probability, density the map's own)");
+  b.Bind("smoother_leftovers", c.smoother_leftovers, "-",
+         "unknown ids, after the smoother merges: a detection the front end left out (held, or of a deleted tentative "
+         "landmark) joins the one landmark of the smoothed map in its gate (gate_accept_chi2), if that gate expects fewer "
+         "clutter or unmapped landmarks than its miss probability");
   b.Bind("smoother_merges_max_landmarks", c.smoother_merges_max_landmarks, "-",
          "above this many landmarks after the split, the joint search (cost ~ candidates x landmarks^3) is skipped and "
          "the front end's association kept", AtLeast(0));
@@ -238,11 +243,41 @@ int GraphSlam::MergeInSmoother(LandmarkGraphSolution& s) {
   return merges;
 }
 
+int GraphSlam::JoinLeftovers(const LandmarkGraphSolution& s, const Estimate& front,
+                            std::map<std::pair<int, int>, int>& joined) {
+  std::vector<LeftoverDetection> detections;
+  std::vector<std::pair<int, int>> where;  // (scan, detection index) of each
+  for (const ObservationAssignment& a : front.observation_assignments) {
+    const auto scan = static_cast<size_t>(a.scan);
+    if (scan >= scan_z_.size() || scan_z_[scan].empty()) continue;  // not a keyframe scan
+    const int keyframe = scan_keyframe_[scan];
+    const int key = a.landmark >= 0 ? GraphKey(SegmentKey(split_, a.landmark, keyframe)) : -1;
+    if (key >= 0 && graph_.landmarks.count(key)) continue;
+    detections.push_back({keyframe, scan_z_[scan].at(static_cast<size_t>(a.index))});
+    where.emplace_back(a.scan, a.index);
+  }
+  const double p = ChiSquareCdf(config_.frontend.gate_accept_chi2, 2.0);
+  const std::vector<int> keys =
+      AssociateLeftovers(graph_, s, detections, {config_.frontend.gate_accept_chi2, 1.0 - p, frontend_.FakeDensity()});
+  int n = 0;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    if (keys[i] < 0) continue;
+    graph_.observations.push_back({detections[i].keyframe, keys[i], detections[i].z});
+    joined[where[i]] = keys[i];
+    ++n;
+  }
+  // Keyframe order, as everything else in the graph keeps its observations.
+  std::stable_sort(graph_.observations.begin(), graph_.observations.end(),
+                   [](const RangeBearingConstraint& u, const RangeBearingConstraint& v) { return u.keyframe < v.keyframe; });
+  return n;
+}
+
 Estimate GraphSlam::Finish() {
   const Estimate front = frontend_.Finish();  // ends a running closure test by the scans so far
   if (frontend_.revised_from_scan() >= 0) RebuildFromScan(frontend_.revised_from_scan(), front);
   LandmarkGraphSolution s;
-  int merges = 0;
+  int merges = 0, leftovers = 0;
+  std::map<std::pair<int, int>, int> joined_leftovers;  // (scan, detection index) -> landmark key
   bool skipped = false;
   if (MergesInSmoother()) {
     // The front end's association, then every re-observation after leaving view split
@@ -264,6 +299,7 @@ Estimate GraphSlam::Finish() {
       s = Solve(false, true);
       merges = MergeInSmoother(s);
       s = Solve(true);  // the marginals of the final graph (the rounds computed the joint landmark block only)
+      if (config_.smoother_leftovers && (leftovers = JoinLeftovers(s, front, joined_leftovers)) > 0) s = Solve(true);
     }
     // A split-off segment seen at one keyframe and merged with nothing constrains nothing
     // (its two residuals meet its two unknowns) and is no evidence of a landmark: after
@@ -284,6 +320,7 @@ Estimate GraphSlam::Finish() {
   d["num_keyframes"].emplace_back(t_end, static_cast<double>(graph_.poses.size()));
   d["skipped_scans"].emplace_back(t_end, skipped_scans_);
   d["smoother_merges"].emplace_back(t_end, merges);
+  if (MergesInSmoother()) d["smoother_leftovers_joined"].emplace_back(t_end, leftovers);
   if (MergesInSmoother()) d["smoother_merges_skipped"].emplace_back(t_end, skipped ? 1.0 : 0.0);
   // The front end associates (and the smoother merges): named by the same landmark ids as below.
   estimate_.observation_assignments = front.observation_assignments;
@@ -292,6 +329,8 @@ Estimate GraphSlam::Finish() {
       a.landmark = GraphKey(SegmentKey(split_, a.landmark, scan_keyframe_.at(a.scan)));
       if (dropped_.count(a.landmark)) a.landmark = -1;
     }
+  for (ObservationAssignment& a : estimate_.observation_assignments)
+    if (const auto j = joined_leftovers.find({a.scan, a.index}); j != joined_leftovers.end()) a.landmark = j->second;
   for (const char* name : {"num_landmarks", "nis", "nis_dof"})
     if (front.diagnostics.count(name)) d[std::string("frontend_") + name] = front.diagnostics.at(name);
 

@@ -35,6 +35,7 @@ struct GraphSlamConfig {
   bool compute_covariance = true;   ///< marginal covariances of poses and landmarks (slam/sparse_marginals.hpp)
   double huber_scale = 0.0;         ///< [sigma] Huber loss on range-bearing residuals (0 = none)
   bool smoother_merges = true;      ///< unknown ids: merge duplicate landmarks jointly under the smoother's marginals (slam/smoother_merges.hpp)
+  bool smoother_leftovers = true;   ///< unknown ids, after the smoother merges: detections the front end left out join the one landmark the smoothed map puts in their gate (slam/leftover_association.hpp)
   int smoother_merges_max_landmarks = 300;  ///< [-] above this many landmarks after the split, keep the front end's association (the search costs ~ candidates x landmarks^3)
   EkfSlamConfig frontend;           ///< association and tentative-landmark settings (same names as ekf-slam)
 };
@@ -65,6 +66,10 @@ class GraphSlam : public SlamModule {
   /// Merges duplicates jointly (slam/smoother_merges.hpp) and re-solves until none is left
   /// (`s`: a solution with the joint landmark covariance, then the last); returns the merges.
   int MergeInSmoother(LandmarkGraphSolution& s);
+  /// Detections of used scans the graph does not use (front end's -1 or a landmark not in the
+  /// graph) that join a landmark of the solution `s` (slam/leftover_association.hpp): added to
+  /// the graph, and to `joined` by (scan, detection index). Returns how many.
+  int JoinLeftovers(const LandmarkGraphSolution& s, const Estimate& front, std::map<std::pair<int, int>, int>& joined);
   /// The key a front-end key's observations belong to in the graph (front-end and smoother merges).
   int GraphKey(int frontend_key) const;
   /// The front end's closure test ended in its rival: the observations of scans `from`.. and

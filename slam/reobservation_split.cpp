@@ -18,23 +18,39 @@ bool InView(const SE2& pose, const Eigen::Vector2d& m, const SensorFootprint& f)
 
 }  // namespace
 
-double ReobservationAmbiguity(const LandmarkGraph& g, int k1, int k2, const Eigen::Vector2d& m,
-                              const Eigen::Vector2d& z, const MergeSearchSettings& test) {
-  SE2 T;  // k1 -> k2 by odometry, covariance over (x, y, theta)
+DeadReckonedDifference DeadReckoned(const LandmarkGraph& g, int k1, int k, const Eigen::Vector2d& m,
+                                    const Eigen::Vector2d& z) {
+  const int from = std::min(k1, k), to = std::max(k1, k);
+  SE2 T;  // from -> to by odometry, covariance over (x, y, theta)
   Eigen::Matrix3d Sigma = Eigen::Matrix3d::Zero();
-  for (int k = k1; k < k2; ++k) {
-    const OdometryConstraint& o = g.odometry.at(k);
+  for (int j = from; j < to; ++j) {
+    const OdometryConstraint& o = g.odometry.at(j);
     Sigma = ComposeCovariance(T, Sigma, o.T_from_to, o.covariance);
     T = T * o.T_from_to;
   }
-  const Eigen::Vector2d p = g.poses.at(k1).inverse() * m - T.translation();  // p - t in k1's frame
+  const Eigen::Vector2d p1 = g.poses.at(k1).inverse() * m;  // the landmark in k1's frame
   const double c = std::cos(T.theta), s = std::sin(T.theta);
-  Eigen::Matrix<double, 2, 3> J;  // d/d(t, theta) of R^T (p - t)
-  J << -c, -s, -s * p.x() + c * p.y(), s, -c, -c * p.x() - s * p.y();
+  Eigen::Matrix<double, 2, 3> J;  // d/d(t, theta) of the landmark in k's frame
+  Eigen::Vector2d predicted;
+  if (k1 <= k) {  // T = k in k1's frame: R^T (p1 - t)
+    const Eigen::Vector2d p = p1 - T.translation();
+    predicted = RotationMatrix(T.theta).transpose() * p;
+    J << -c, -s, -s * p.x() + c * p.y(), s, -c, -c * p.x() - s * p.y();
+  } else {  // T = k1 in k's frame: R p1 + t
+    predicted = T * p1;
+    J << 1, 0, -s * p1.x() - c * p1.y(), 0, 1, c * p1.x() - s * p1.y();
+  }
   Eigen::Matrix2d G;  // d/d(r, b) of (r cos b, r sin b)
   G << std::cos(z.y()), -z.x() * std::sin(z.y()), std::sin(z.y()), z.x() * std::cos(z.y());
-  const Eigen::Matrix2d C = J * Sigma * J.transpose() + 2.0 * G * g.observation_covariance * G.transpose();
-  return ExpectedInGate(C, test.gate_chi2, test.density_per_m2);
+  DeadReckonedDifference d;
+  d.difference = predicted - Eigen::Vector2d(z.x() * std::cos(z.y()), z.x() * std::sin(z.y()));
+  d.C = J * Sigma * J.transpose() + 2.0 * G * g.observation_covariance * G.transpose();
+  return d;
+}
+
+double ReobservationAmbiguity(const LandmarkGraph& g, int k1, int k2, const Eigen::Vector2d& m,
+                              const Eigen::Vector2d& z, const MergeSearchSettings& test) {
+  return ExpectedInGate(DeadReckoned(g, k1, k2, m, z).C, test.gate_chi2, test.density_per_m2);
 }
 
 ReobservationSplit SplitAtReobservations(LandmarkGraph& graph, const SensorFootprint& footprint, const MergeSearchSettings& test,

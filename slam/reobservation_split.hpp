@@ -50,8 +50,20 @@ struct ReobservationSplit {
 ReobservationSplit SplitAtReobservations(LandmarkGraph& graph, const SensorFootprint& footprint,
                                          const MergeSearchSettings& test, int first_free_key);
 
-/// mu of the re-observation at keyframe k2, with bearing-range z, of a landmark at m last
-/// seen at keyframe k1 (see above).
+/// Detection z at keyframe k of a landmark at m (in the graph's frame) seen from keyframe
+/// k1, by dead reckoning alone: m taken into k1's frame by the graph's pose, carried to k's
+/// frame by the odometry between them (either order), minus the detection's point; both in
+/// k's frame. C as above (odometry covariance composed over the keyframes between, plus the
+/// range-bearing noise of two observations).
+struct DeadReckonedDifference {
+  Eigen::Vector2d difference = Eigen::Vector2d::Zero();  ///< [m] predicted point - detected point
+  Eigen::Matrix2d C = Eigen::Matrix2d::Zero();
+};
+DeadReckonedDifference DeadReckoned(const LandmarkGraph& graph, int k1, int k, const Eigen::Vector2d& m,
+                                    const Eigen::Vector2d& z);
+
+/// mu of the re-observation at keyframe k2 > k1, with bearing-range z, of a landmark at m
+/// last seen at keyframe k1 (see above).
 double ReobservationAmbiguity(const LandmarkGraph& graph, int k1, int k2, const Eigen::Vector2d& m,
                               const Eigen::Vector2d& z, const MergeSearchSettings& test);
 
