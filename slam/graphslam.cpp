@@ -243,8 +243,7 @@ int GraphSlam::MergeInSmoother(LandmarkGraphSolution& s) {
   return merges;
 }
 
-int GraphSlam::JoinLeftovers(const LandmarkGraphSolution& s, const Estimate& front,
-                            std::map<std::pair<int, int>, int>& joined) {
+std::map<std::pair<int, int>, int> GraphSlam::JoinLeftovers(const LandmarkGraphSolution& s, const Estimate& front) {
   std::vector<LeftoverDetection> detections;
   std::vector<std::pair<int, int>> where;  // (scan, detection index) of each
   for (const ObservationAssignment& a : front.observation_assignments) {
@@ -259,24 +258,23 @@ int GraphSlam::JoinLeftovers(const LandmarkGraphSolution& s, const Estimate& fro
   const double p = ChiSquareCdf(config_.frontend.gate_accept_chi2, 2.0);
   const std::vector<int> keys =
       AssociateLeftovers(graph_, s, detections, {config_.frontend.gate_accept_chi2, 1.0 - p, frontend_.FakeDensity()});
-  int n = 0;
+  std::map<std::pair<int, int>, int> joined;
   for (size_t i = 0; i < keys.size(); ++i) {
     if (keys[i] < 0) continue;
     graph_.observations.push_back({detections[i].keyframe, keys[i], detections[i].z});
     joined[where[i]] = keys[i];
-    ++n;
   }
   // Keyframe order, as everything else in the graph keeps its observations.
   std::stable_sort(graph_.observations.begin(), graph_.observations.end(),
                    [](const RangeBearingConstraint& u, const RangeBearingConstraint& v) { return u.keyframe < v.keyframe; });
-  return n;
+  return joined;
 }
 
 Estimate GraphSlam::Finish() {
   const Estimate front = frontend_.Finish();  // ends a running closure test by the scans so far
   if (frontend_.revised_from_scan() >= 0) RebuildFromScan(frontend_.revised_from_scan(), front);
   LandmarkGraphSolution s;
-  int merges = 0, leftovers = 0;
+  int merges = 0;
   std::map<std::pair<int, int>, int> joined_leftovers;  // (scan, detection index) -> landmark key
   bool skipped = false;
   if (MergesInSmoother()) {
@@ -299,7 +297,7 @@ Estimate GraphSlam::Finish() {
       s = Solve(false, true);
       merges = MergeInSmoother(s);
       s = Solve(true);  // the marginals of the final graph (the rounds computed the joint landmark block only)
-      if (config_.smoother_leftovers && (leftovers = JoinLeftovers(s, front, joined_leftovers)) > 0) s = Solve(true);
+      if (config_.smoother_leftovers && !(joined_leftovers = JoinLeftovers(s, front)).empty()) s = Solve(true);
     }
     // A split-off segment seen at one keyframe and merged with nothing constrains nothing
     // (its two residuals meet its two unknowns) and is no evidence of a landmark: after
@@ -320,17 +318,19 @@ Estimate GraphSlam::Finish() {
   d["num_keyframes"].emplace_back(t_end, static_cast<double>(graph_.poses.size()));
   d["skipped_scans"].emplace_back(t_end, skipped_scans_);
   d["smoother_merges"].emplace_back(t_end, merges);
-  if (MergesInSmoother()) d["smoother_leftovers_joined"].emplace_back(t_end, leftovers);
-  if (MergesInSmoother()) d["smoother_merges_skipped"].emplace_back(t_end, skipped ? 1.0 : 0.0);
+  if (MergesInSmoother()) {
+    d["smoother_merges_skipped"].emplace_back(t_end, skipped ? 1.0 : 0.0);
+    d["smoother_leftovers_joined"].emplace_back(t_end, static_cast<double>(joined_leftovers.size()));
+  }
   // The front end associates (and the smoother merges): named by the same landmark ids as below.
   estimate_.observation_assignments = front.observation_assignments;
-  for (ObservationAssignment& a : estimate_.observation_assignments)
+  for (ObservationAssignment& a : estimate_.observation_assignments) {
     if (a.landmark >= 0) {
       a.landmark = GraphKey(SegmentKey(split_, a.landmark, scan_keyframe_.at(a.scan)));
       if (dropped_.count(a.landmark)) a.landmark = -1;
     }
-  for (ObservationAssignment& a : estimate_.observation_assignments)
     if (const auto j = joined_leftovers.find({a.scan, a.index}); j != joined_leftovers.end()) a.landmark = j->second;
+  }
   for (const char* name : {"num_landmarks", "nis", "nis_dof"})
     if (front.diagnostics.count(name)) d[std::string("frontend_") + name] = front.diagnostics.at(name);
 

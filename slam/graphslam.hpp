@@ -68,8 +68,8 @@ class GraphSlam : public SlamModule {
   int MergeInSmoother(LandmarkGraphSolution& s);
   /// Detections of used scans the graph does not use (front end's -1 or a landmark not in the
   /// graph) that join a landmark of the solution `s` (slam/leftover_association.hpp): added to
-  /// the graph, and to `joined` by (scan, detection index). Returns how many.
-  int JoinLeftovers(const LandmarkGraphSolution& s, const Estimate& front, std::map<std::pair<int, int>, int>& joined);
+  /// the graph; returned as (scan, detection index) -> landmark key.
+  std::map<std::pair<int, int>, int> JoinLeftovers(const LandmarkGraphSolution& s, const Estimate& front);
   /// The key a front-end key's observations belong to in the graph (front-end and smoother merges).
   int GraphKey(int frontend_key) const;
   /// The front end's closure test ended in its rival: the observations of scans `from`.. and

@@ -2,8 +2,6 @@
 
 #include <Eigen/LU>
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <map>
 #include <set>
 
@@ -37,7 +35,7 @@ std::vector<int> AssociateLeftovers(const LandmarkGraph& graph, const LandmarkGr
   }
   for (auto& [key, k] : observers) std::sort(k.begin(), k.end());
   std::vector<Eigen::Vector2d> points;  // each detection in its keyframe's frame
-  for (const LeftoverDetection& d : detections) points.emplace_back(d.z.x() * std::cos(d.z.y()), d.z.x() * std::sin(d.z.y()));
+  for (const LeftoverDetection& d : detections) points.push_back(InverseObservation(SE2(), d.z).landmark);
   std::map<std::pair<int, int>, int> choosers;  // (keyframe, landmark) -> leftover detections choosing it
   for (size_t i = 0; i < detections.size(); ++i) {
     const LeftoverDetection& d = detections[i];

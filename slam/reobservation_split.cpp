@@ -40,10 +40,10 @@ DeadReckonedDifference DeadReckoned(const LandmarkGraph& g, int k1, int k, const
     predicted = T * p1;
     J << 1, 0, -s * p1.x() - c * p1.y(), 0, 1, c * p1.x() - s * p1.y();
   }
-  Eigen::Matrix2d G;  // d/d(r, b) of (r cos b, r sin b)
-  G << std::cos(z.y()), -z.x() * std::sin(z.y()), std::sin(z.y()), z.x() * std::cos(z.y());
+  const LandmarkInitialization detected = InverseObservation(SE2(), z);  // (r cos b, r sin b), G = d/d(r, b)
+  const Eigen::Matrix2d& G = detected.J_landmark_z;
   DeadReckonedDifference d;
-  d.difference = predicted - Eigen::Vector2d(z.x() * std::cos(z.y()), z.x() * std::sin(z.y()));
+  d.difference = predicted - detected.landmark;
   d.C = J * Sigma * J.transpose() + 2.0 * G * g.observation_covariance * G.transpose();
   return d;
 }
