@@ -149,18 +149,32 @@ ScoreTable MakeScoreTable(const std::vector<Eigen::Vector2d>& map_points, const 
         v = std::min(v, static_cast<float>((centre - p).squaredNorm()));
       }
   }
+  // Level 0 in place of the squared distances; each pooled level written once, in order
+  // (no zero fill first: the tables are large and this runs for every loop submap).
   const double reach2 = reach_m * reach_m, inv = 1.0 / (2.0 * config.sigma_m * config.sigma_m);
-  auto& base = t.levels[0];
-  base.resize(cells);
-  for (size_t i = 0; i < cells; ++i) base[i] = d2[i] <= reach2 ? static_cast<float>(std::exp(-d2[i] * inv)) : 0.0f;
+  for (float& v : d2) v = v <= reach2 ? static_cast<float>(std::exp(-v * inv)) : 0.0f;
+  t.levels[0] = std::move(d2);
+  const size_t w = static_cast<size_t>(t.width);
   for (int h = 1; h < config.levels; ++h) {
-    const int s = 1 << (h - 1);
-    auto& out = t.levels[static_cast<size_t>(h)];
-    out.resize(cells);
-    for (int y = 0; y < t.height; ++y)
-      for (int x = 0; x < t.width; ++x)
-        out[static_cast<size_t>(y) * static_cast<size_t>(t.width) + static_cast<size_t>(x)] =
-            std::max({t.At(h - 1, x, y), t.At(h - 1, x + s, y), t.At(h - 1, x, y + s), t.At(h - 1, x + s, y + s)});
+    const size_t s = size_t{1} << (h - 1);
+    const std::vector<float>& in = t.levels[static_cast<size_t>(h - 1)];
+    std::vector<float> out;
+    out.reserve(cells);
+    for (size_t y = 0; y < static_cast<size_t>(t.height); ++y) {
+      const float* row = in.data() + y * w;
+      // Cells past the table's edge count as 0, and every score is >= 0: they never win.
+      const float* below = y + s < static_cast<size_t>(t.height) ? row + s * w : nullptr;
+      for (size_t x = 0; x < w; ++x) {
+        float v = row[x];
+        if (x + s < w) v = std::max(v, row[x + s]);
+        if (below) {
+          v = std::max(v, below[x]);
+          if (x + s < w) v = std::max(v, below[x + s]);
+        }
+        out.push_back(v);
+      }
+    }
+    t.levels[static_cast<size_t>(h)] = std::move(out);
   }
   return t;
 }
