@@ -1,5 +1,5 @@
 #pragma once
-// Reading and writing 2D pose(-landmark) graphs:
+// Reading (slam/g2o_io.cpp) and writing (slam/g2o_write.cpp) 2D pose(-landmark) graphs:
 //  - g2o: `VERTEX_SE2 id x y theta`, `VERTEX_XY id x y` (a point landmark; poses and points
 //    share one id space), `EDGE_SE2 i j dx dy dtheta I11 I12 I13 I22 I23 I33` with the upper
 //    triangle of the information matrix, `EDGE_SE2_XY pose_id point_id dx dy I11 I12 I22`
