@@ -121,6 +121,8 @@ class EkfSlam : public SlamModule {
   int next_key() const { return next_key_; }
   /// [1/m^2] clutter plus new landmarks: the density of detections no mapped landmark explains.
   double FakeDensity() const;
+  /// P[chi2(2) < gate_accept_chi2]: a real landmark's detection falls in its gate (after Start).
+  double gate_probability() const { return gate_probability_; }
 
  private:
   /// Update, new landmarks, existence, merges and bookkeeping of a scan whose association is decided.

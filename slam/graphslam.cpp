@@ -255,9 +255,9 @@ std::map<std::pair<int, int>, int> GraphSlam::JoinLeftovers(const LandmarkGraphS
     detections.push_back({keyframe, scan_z_[scan].at(static_cast<size_t>(a.index))});
     where.emplace_back(a.scan, a.index);
   }
-  const double p = ChiSquareCdf(config_.frontend.gate_accept_chi2, 2.0);
-  const std::vector<int> keys =
-      AssociateLeftovers(graph_, s, detections, {config_.frontend.gate_accept_chi2, 1.0 - p, frontend_.FakeDensity()});
+  const std::vector<int> keys = AssociateLeftovers(
+      graph_, s, detections,
+      {config_.frontend.gate_accept_chi2, 1.0 - frontend_.gate_probability(), frontend_.FakeDensity()});
   std::map<std::pair<int, int>, int> joined;
   for (size_t i = 0; i < keys.size(); ++i) {
     if (keys[i] < 0) continue;
