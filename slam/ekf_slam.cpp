@@ -1,6 +1,7 @@
 #include "slam/ekf_slam.hpp"
 
 #include <cmath>
+#include <tuple>
 
 #include "core/chi_square.hpp"
 #include "core/error.hpp"
@@ -288,9 +289,13 @@ int EkfSlam::MergeDuplicates(bool certain_only, bool* uncertain_found) {
     std::vector<int> near;
     for (int j = 0; j < state_.NumLandmarks(); ++j)
       if ((state_.Landmark(j) - robot).norm() < range_max_m_) near.push_back(j);
-    for (size_t p = 0; p < near.size() && !again; ++p)
-      for (size_t q = p + 1; q < near.size() && !again; ++q) {
-        const int a = near[p], b = near[q];  // a < b: a is the older landmark and is kept
+    // The most similar pair first: a landmark can have two twins in its gate, one of them
+    // a new tree next to it (forest seed 218: tree 12's twin at d^2 2.5 and tree 8 at 8.0;
+    // merging the first found took tree 8 and the filter never recovered).
+    std::vector<std::tuple<double, int, int>> pairs;  // (d^2, a, b), a < b: a is the older landmark and is kept
+    for (size_t p = 0; p < near.size(); ++p)
+      for (size_t q = p + 1; q < near.size(); ++q) {
+        const int a = near[p], b = near[q];
         if (SeenTogether(tracks_[a].key, tracks_[b].key)) continue;
         const PointDifference difference = DifferenceOf(state_.mean, state_.covariance, 3 + 2 * a, 3 + 2 * b);
         if (!(difference.d2 < gate)) continue;
@@ -298,25 +303,30 @@ int EkfSlam::MergeDuplicates(bool certain_only, bool* uncertain_found) {
           if (uncertain_found != nullptr) *uncertain_found = true;
           continue;
         }
-        if (!MergeLandmarks(state_, a, b)) continue;
-        LandmarkTrack& keep = tracks_[a];
-        const LandmarkTrack& gone = tracks_[b];
-        keep.sightings += gone.sightings;
-        keep.existence += gone.existence;
-        keep.expected_detections += gone.expected_detections;
-        keep.detected_scans += gone.detected_scans;
-        keep.log_ratio += gone.log_ratio;  // independent trials of one landmark
-        keep.confirmed = keep.confirmed || gone.confirmed || ReadyToConfirm(keep);
-        merged_into_[gone.key] = keep.key;
-        // What was seen together with the removed landmark was seen together with the kept one.
-        for (const auto& [k1, k2] : std::vector<std::pair<int, int>>(co_observed_.begin(), co_observed_.end())) {
-          if (k1 == gone.key && k2 != keep.key) co_observed_.insert(std::minmax(keep.key, k2));
-          if (k2 == gone.key && k1 != keep.key) co_observed_.insert(std::minmax(keep.key, k1));
-        }
-        tracks_.erase(tracks_.begin() + b);
-        ++merged;
-        again = true;
+        pairs.emplace_back(difference.d2, a, b);
       }
+    std::sort(pairs.begin(), pairs.end());
+    for (size_t k = 0; k < pairs.size() && !again; ++k) {
+      const auto [d2, a, b] = pairs[k];
+      if (!MergeLandmarks(state_, a, b)) continue;
+      LandmarkTrack& keep = tracks_[a];
+      const LandmarkTrack& gone = tracks_[b];
+      keep.sightings += gone.sightings;
+      keep.existence += gone.existence;
+      keep.expected_detections += gone.expected_detections;
+      keep.detected_scans += gone.detected_scans;
+      keep.log_ratio += gone.log_ratio;  // independent trials of one landmark
+      keep.confirmed = keep.confirmed || gone.confirmed || ReadyToConfirm(keep);
+      merged_into_[gone.key] = keep.key;
+      // What was seen together with the removed landmark was seen together with the kept one.
+      for (const auto& [k1, k2] : std::vector<std::pair<int, int>>(co_observed_.begin(), co_observed_.end())) {
+        if (k1 == gone.key && k2 != keep.key) co_observed_.insert(std::minmax(keep.key, k2));
+        if (k2 == gone.key && k1 != keep.key) co_observed_.insert(std::minmax(keep.key, k1));
+      }
+      tracks_.erase(tracks_.begin() + b);
+      ++merged;
+      again = true;
+    }
   }
   return merged;
 }

@@ -1,7 +1,7 @@
 // Landmark merging and existence in EKF-SLAM: the difference test against a hand-computed
 // d^2, the merge against a dense Kalman conditioning, and on scripted detections (a robot
 // standing still, so the only uncertainty is the sensor's): a duplicate merged, two trees
-// closer than the sensor resolves never merged, a confirmed landmark removed by its
+// closer than the sensor resolves never merged, the nearer of two twins merged first, a confirmed landmark removed by its
 // existence count, clutter alone never confirmed.
 #include "slam/landmark_merge.hpp"
 
@@ -135,6 +135,22 @@ TEST(EkfSlamExistence, DuplicateOutsideTheNewLandmarkGateIsMerged) {
   double merged = 0;
   for (const auto& [t, m] : e.diagnostics.at("merged_landmarks")) merged += m;
   EXPECT_EQ(merged, 1.0);
+}
+
+TEST(EkfSlamExistence, TheMostSimilarOfTwoDuplicatesIsMerged) {
+  // Landmark 0 at 5 m; then two new ones in one scan (so never the same tree), listed
+  // farther first: at 5.3 m (difference d^2 4.5) and 5.15 m (d^2 1.125), both outside the
+  // new gate 1.0 and inside the merge gate 9.21. The nearer twin is merged (forest seed
+  // 218: merging the first pair found took a neighbouring tree); the other then shares a
+  // scan with the merged landmark and stays.
+  Scripted s({.gate_accept_chi2 = 0.5, .gate_new_chi2 = 1.0, .closure_test = false});
+  s.Scan({{5.0, 0.0, -1}});
+  s.Scan({{5.3, 0.0, -1}, {5.15, 0.0, -1}});
+  ASSERT_EQ(s.ekf.tracks().size(), 2u);
+  EXPECT_EQ(s.ekf.ResolveKey(2), 0);  // 5.15 m into the first landmark
+  EXPECT_EQ(s.ekf.ResolveKey(1), 1);
+  EXPECT_NEAR(s.ekf.state().Landmark(0).x(), 5.075, 1e-9);
+  EXPECT_NEAR(s.ekf.state().Landmark(1).x(), 5.3, 1e-9);
 }
 
 TEST(EkfSlamExistence, TwoTreesCloserThanTheSensorResolvesAreNeverMerged) {
