@@ -16,8 +16,8 @@
 // seen, -P_D missed, removed at 0). Bounds: the gate's own error probability. Two
 // landmarks that become statistically identical (slam/landmark_merge.hpp) are merged, the
 // most similar pair first, unless they were ever seen in one scan (then they are two
-// landmarks, however close). A pairing whose gate
-// may hold clutter (the lone re-observation of an old landmark after drift) is held until
+// landmarks, however close). A pairing whose gate may hold clutter (the lone
+// re-observation of an old landmark after drift) is held until
 // pairings of other landmarks support it (slam/held_pairings.hpp). A loop closure that
 // still rests on uncertain evidence (a released pairing or a merge whose own gate may hold
 // a fake) is tested on the scans that follow it: the filter forks into a branch with the

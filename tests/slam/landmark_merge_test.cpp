@@ -1,8 +1,8 @@
 // Landmark merging and existence in EKF-SLAM: the difference test against a hand-computed
 // d^2, the merge against a dense Kalman conditioning, and on scripted detections (a robot
 // standing still, so the only uncertainty is the sensor's): a duplicate merged, two trees
-// closer than the sensor resolves never merged, the nearer of two twins merged first, a confirmed landmark removed by its
-// existence count, clutter alone never confirmed.
+// closer than the sensor resolves never merged, the nearer of two twins merged first, a
+// confirmed landmark removed by its existence count, clutter alone never confirmed.
 #include "slam/landmark_merge.hpp"
 
 #include <gtest/gtest.h>
