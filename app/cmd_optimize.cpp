@@ -5,34 +5,22 @@
 // --json keeps the documented key order (DESIGN.md), then adds init, robust, counts and the
 // accuracy keys (null without ground truth).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "app/optimize_accuracy.hpp"
+#include "app/optimize_init.hpp"
 #include "core/error.hpp"
 #include "slam/g2o_io.hpp"
 #include "slam/pose_graph.hpp"
-#include "slam/pose_graph_init.hpp"
 
 namespace slambox {
 namespace {
-
-enum class InitMethod { kAuto, kFile, kLago, kOdometry };
-const std::map<std::string, InitMethod> kInitMethods = {
-    {"auto", InitMethod::kAuto}, {"file", InitMethod::kFile}, {"lago", InitMethod::kLago}, {"odometry", InitMethod::kOdometry}};
-
-std::string InitName(InitMethod m) {
-  for (const auto& [name, method] : kInitMethods)
-    if (method == m) return name;
-  return "?";
-}
 
 struct OptimizeArgs {
   std::string graph_path;
@@ -46,57 +34,6 @@ struct OptimizeArgs {
   std::vector<std::string> groundtruth_paths;
   IsamNoise noise = IsamNoise::kAuto;
 };
-
-// One initial guess solved: the method, its cost and the solution.
-struct InitAttempt {
-  InitMethod init;
-  double init_time_s = 0.0;
-  PoseGraph graph;
-  PoseGraphSolveResult result;
-};
-
-InitAttempt SolveFrom(const PoseGraphFile& file, InitMethod method, const PoseGraphSolveOptions& options) {
-  InitAttempt a{method, 0.0, file.graph, {}};
-  const auto t0 = std::chrono::steady_clock::now();
-  if (method == InitMethod::kOdometry) a.graph.poses = SpanningTreeInitialization(a.graph);
-  if (method == InitMethod::kLago) a.graph.poses = LagoInitialization(a.graph);
-  // The pose-only initializers leave landmarks to their observations at the new poses:
-  // the mean over them (cityTrees10000 from the odometry chain: chi2 8668.929 in 56
-  // iterations; from the first observation alone 8668.934 in 27, ATE 0.977 m vs 0.936 m).
-  if (method == InitMethod::kOdometry || method == InitMethod::kLago)
-    a.graph.landmarks = LandmarksFromObservations(a.graph, a.graph.poses);
-  a.init_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  a.result = SolvePoseGraph(a.graph, options);
-  return a;
-}
-
-// `auto` keeps the attempt that converged to the lowest chi2 (usable before not usable,
-// converged before stalled); within 1e-6 relative (Ceres' default function_tolerance, at
-// which each solve stops: the same optimum) the earlier of file, lago, odometry wins.
-bool Better(const InitAttempt& a, const InitAttempt& b) {
-  const auto rank = [](const PoseGraphSolveResult& r) { return (r.usable ? 2 : 0) + (r.termination == "CONVERGENCE"); };
-  if (rank(a.result) != rank(b.result)) return rank(a.result) > rank(b.result);
-  return a.result.chi2_final < b.result.chi2_final * (1.0 - 1e-6);
-}
-
-// The requested initial guess solved; for `auto` every cheap one (the file's guess, LAGO,
-// the odometry chain: milliseconds each), the best kept and the others listed.
-std::vector<InitAttempt> SolveWithInit(const PoseGraphFile& file, InitMethod init, const std::string& path,
-                                       const PoseGraphSolveOptions& options) {
-  if (init == InitMethod::kFile && !file.has_initial_guess)
-    throw InputError(path, 0,
-                     "--init file, but not every pose and landmark has a VERTEX_SE2 / VERTEX2 / VERTEX_XY line",
-                     "use --init lago (or odometry) to compute an initial guess");
-  if (init != InitMethod::kAuto) return {SolveFrom(file, init, options)};
-  std::vector<InitAttempt> attempts;
-  for (const InitMethod method : {InitMethod::kFile, InitMethod::kLago, InitMethod::kOdometry})
-    if (method != InitMethod::kFile || file.has_initial_guess) attempts.push_back(SolveFrom(file, method, options));
-  size_t best = 0;
-  for (size_t i = 1; i < attempts.size(); ++i)
-    if (Better(attempts[i], attempts[best])) best = i;
-  std::rotate(attempts.begin(), attempts.begin() + static_cast<long>(best), attempts.begin() + static_cast<long>(best) + 1);
-  return attempts;  // the chosen one first
-}
 
 void RunOptimize(const OptimizeArgs& args) {
   PoseGraphFile file = ReadPoseGraph(args.graph_path, {.isam_noise = args.noise});
@@ -228,12 +165,18 @@ void AddOptimizeCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--init", args->init,
-                  "initial guess: file (VERTEX lines), odometry (spanning tree), lago; landmarks (odometry, lago) "
-                  "at the mean of their observations from the initialized poses; auto = solve from each (file only "
+                  "initial guess: file (VERTEX lines), odometry (spanning tree), lago, chordal (rotations by the chordal "
+                  "relaxation, then positions as lago); landmarks (all but file) at the mean of their observations from the initialized poses; auto = solve from each (file only "
                   "if every pose and landmark has a VERTEX line) and keep the lowest converged chi2")
-      ->transform(CLI::CheckedTransformer(kInitMethods, CLI::ignore_case).description("{auto,file,lago,odometry}"))
+      ->transform(CLI::CheckedTransformer(InitMethodNames(), CLI::ignore_case).description([] {
+        std::string names;
+        for (const auto& [name, method] : InitMethodNames()) names += (names.empty() ? "{" : ",") + name;
+        return names + "}";
+      }()))
       ->default_str("auto");
-  cmd->add_option("--max-iterations", args->max_iterations, "Levenberg-Marquardt iteration cap")
+  cmd->add_option("--max-iterations", args->max_iterations,
+                  "Levenberg-Marquardt iteration cap per solve (auto continues once an attempt that stopped at the "
+                  "cap below every converged chi2)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--threads", args->threads, "Ceres threads")->check(CLI::PositiveNumber)->capture_default_str();

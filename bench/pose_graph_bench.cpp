@@ -77,7 +77,7 @@ PoseGraphSolveResult SolveCeresExampleLayout(PoseGraph& graph) {
 }
 
 enum class Method { kCeresExample, kSlambox, kSlamboxMarginals };
-enum class Start { kFile, kOdometry, kLago };
+enum class Start { kFile, kOdometry, kLago, kChordal };
 
 void BM_PoseGraph(benchmark::State& state, const PoseGraphFile* file, Method method, Start start) {
   PoseGraphSolveResult r;
@@ -85,6 +85,7 @@ void BM_PoseGraph(benchmark::State& state, const PoseGraphFile* file, Method met
     PoseGraph graph = file->graph;
     if (start == Start::kOdometry) graph.poses = SpanningTreeInitialization(graph);
     if (start == Start::kLago) graph.poses = LagoInitialization(graph);
+    if (start == Start::kChordal) graph.poses = ChordalInitialization(graph);
     PoseGraphSolveOptions options;
     options.compute_marginals = method == Method::kSlamboxMarginals;
     r = method == Method::kCeresExample ? SolveCeresExampleLayout(graph) : SolvePoseGraph(graph, options);
@@ -120,14 +121,16 @@ int main(int argc, char** argv) {
     const std::vector<std::pair<std::string, Start>> starts =
         f->has_initial_guess ? std::vector<std::pair<std::string, Start>>{{"file", Start::kFile},
                                                                           {"odometry", Start::kOdometry},
-                                                                          {"lago", Start::kLago}}
+                                                                          {"lago", Start::kLago},
+                                                                          {"chordal", Start::kChordal}}
                              : std::vector<std::pair<std::string, Start>>{{"odometry", Start::kOdometry},
-                                                                          {"lago", Start::kLago}};
+                                                                          {"lago", Start::kLago},
+                                                                          {"chordal", Start::kChordal}};
     for (const auto& [start_name, start] : starts) {
       for (const auto& [method_name, method] :
            {std::pair<std::string, Method>{"ceres_example", Method::kCeresExample}, {"slambox", Method::kSlambox},
             {"slambox_marginals", Method::kSlamboxMarginals}}) {
-        if (method == Method::kCeresExample && start == Start::kLago) continue;  // the baseline: plain LM
+        if (method == Method::kCeresExample && (start == Start::kLago || start == Start::kChordal)) continue;  // the baseline: plain LM
         if (method == Method::kSlamboxMarginals && start != starts.front().second) continue;  // one start suffices
         benchmark::RegisterBenchmark((name + "/" + start_name + "/" + method_name).c_str(), BM_PoseGraph, f,
                                      method, start)

@@ -35,6 +35,12 @@ bool Reached(const SpanningTree& tree, const PoseGraph& graph, int v) {
   return v == graph.anchor || tree.parent_edge[v] >= 0;
 }
 
+// Adds the 2x2 block M at block row r, block column c.
+void AddBlock(std::vector<Eigen::Triplet<double>>& triplets, int r, int c, const Eigen::Matrix2d& M) {
+  for (int a = 0; a < 2; ++a)
+    for (int d = 0; d < 2; ++d) triplets.emplace_back(2 * r + a, 2 * c + d, M(a, d));
+}
+
 }  // namespace
 
 SpanningTree BuildSpanningTree(const PoseGraph& graph, bool prefer_odometry) {
@@ -129,9 +135,51 @@ std::vector<double> LagoOrientations(const PoseGraph& graph, const SpanningTree&
   return theta;
 }
 
-std::vector<SE2> LagoInitialization(const PoseGraph& graph) {
-  const SpanningTree tree = BuildSpanningTree(graph, false);
-  const std::vector<double> theta = LagoOrientations(graph, tree);
+std::vector<double> ChordalOrientations(const PoseGraph& graph, const SpanningTree& tree) {
+  int m = 0;
+  const std::vector<int> index = UnknownIndex(graph, tree, &m);
+  std::vector<double> theta = tree.theta_unwrapped;
+  if (m == 0) return theta;
+  // Each rotation as a unit vector z = (cos theta, sin theta); an edge says
+  // z_j = Rot(delta_e) z_i. Minimize sum_e w_e |z_j - Rot(delta_e) z_i|^2 (half the
+  // squared chordal distance |R_j - R_i R_e|_F^2) over unconstrained z, z_anchor fixed:
+  // linear least squares with no 2 pi ambiguity; theta_i = atan2 of the solution.
+  // Normal equations per edge (Q = Rot(delta_e), Q^T Q = I):
+  //   row j: w (z_j - Q z_i),  row i: w (z_i - Q^T z_j).
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * m);
+  const Eigen::Vector2d z_anchor(std::cos(theta[graph.anchor]), std::sin(theta[graph.anchor]));
+  for (const PoseGraphEdge& e : graph.edges) {
+    if (!Reached(tree, graph, e.from) || !Reached(tree, graph, e.to)) continue;
+    const double w = 1.0 / e.information.inverse()(2, 2);
+    const Eigen::Matrix2d Q = RotationMatrix(e.T_from_to.theta);
+    const Eigen::Matrix2d W = w * Eigen::Matrix2d::Identity();
+    const int i = index[e.from], j = index[e.to];
+    if (j >= 0) {
+      AddBlock(triplets, j, j, W);
+      if (i >= 0) AddBlock(triplets, j, i, -w * Q); else b.segment<2>(2 * j) += w * Q * z_anchor;
+    }
+    if (i >= 0) {
+      AddBlock(triplets, i, i, W);
+      if (j >= 0) AddBlock(triplets, i, j, -w * Q.transpose()); else b.segment<2>(2 * i) += w * Q.transpose() * z_anchor;
+    }
+  }
+  Eigen::SparseMatrix<double> A(2 * m, 2 * m);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+  const Eigen::VectorXd x = ldlt.solve(b);
+  if (ldlt.info() != Eigen::Success || !x.allFinite()) return tree.theta_unwrapped;
+  for (size_t v = 0; v < index.size(); ++v)
+    if (index[v] >= 0 && x.segment<2>(2 * index[v]).norm() > 0)
+      theta[v] = std::atan2(x(2 * index[v] + 1), x(2 * index[v]));
+  return theta;
+}
+
+namespace {
+
+// Positions by linear least squares given the orientations `theta` (LAGO's second phase).
+std::vector<SE2> PositionsGivenOrientations(const PoseGraph& graph, const SpanningTree& tree,
+                                            const std::vector<double>& theta) {
   int m = 0;
   const std::vector<int> index = UnknownIndex(graph, tree, &m);
   std::vector<SE2> poses = graph.poses;
@@ -142,10 +190,6 @@ std::vector<SE2> LagoInitialization(const PoseGraph& graph) {
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * m);
   const Eigen::Vector2d t_anchor = graph.poses[graph.anchor].translation();
-  auto add_block = [&](int r, int c, const Eigen::Matrix2d& M) {
-    for (int a = 0; a < 2; ++a)
-      for (int d = 0; d < 2; ++d) triplets.emplace_back(2 * r + a, 2 * c + d, M(a, d));
-  };
   for (const PoseGraphEdge& e : graph.edges) {
     if (!Reached(tree, graph, e.from) || !Reached(tree, graph, e.to)) continue;
     const Eigen::Matrix2d R_i = RotationMatrix(theta[e.from]);
@@ -153,14 +197,14 @@ std::vector<SE2> LagoInitialization(const PoseGraph& graph) {
     const Eigen::Vector2d Wd = W * (R_i * e.T_from_to.translation());
     const int i = index[e.from], j = index[e.to];
     if (j >= 0) {
-      add_block(j, j, W);
+      AddBlock(triplets, j, j, W);
       b.segment<2>(2 * j) += Wd;
-      if (i >= 0) add_block(j, i, -W); else b.segment<2>(2 * j) += W * t_anchor;
+      if (i >= 0) AddBlock(triplets, j, i, -W); else b.segment<2>(2 * j) += W * t_anchor;
     }
     if (i >= 0) {
-      add_block(i, i, W);
+      AddBlock(triplets, i, i, W);
       b.segment<2>(2 * i) -= Wd;
-      if (j >= 0) add_block(i, j, -W); else b.segment<2>(2 * i) += W * t_anchor;
+      if (j >= 0) AddBlock(triplets, i, j, -W); else b.segment<2>(2 * i) += W * t_anchor;
     }
   }
   Eigen::SparseMatrix<double> A(2 * m, 2 * m);
@@ -171,6 +215,18 @@ std::vector<SE2> LagoInitialization(const PoseGraph& graph) {
   for (size_t v = 0; v < index.size(); ++v)
     if (index[v] >= 0) poses[v] = SE2(x(2 * index[v]), x(2 * index[v] + 1), theta[v]);
   return poses;
+}
+
+}  // namespace
+
+std::vector<SE2> LagoInitialization(const PoseGraph& graph) {
+  const SpanningTree tree = BuildSpanningTree(graph, false);
+  return PositionsGivenOrientations(graph, tree, LagoOrientations(graph, tree));
+}
+
+std::vector<SE2> ChordalInitialization(const PoseGraph& graph) {
+  const SpanningTree tree = BuildSpanningTree(graph, false);
+  return PositionsGivenOrientations(graph, tree, ChordalOrientations(graph, tree));
 }
 
 std::vector<Eigen::Vector2d> LandmarksFromObservations(const PoseGraph& graph, const std::vector<SE2>& poses,

@@ -6,6 +6,11 @@
 //    planar pose graph optimization", IJRR 2014): orientations first, by linear least
 //    squares over angle differences made consistent around cycles (2 pi k regularization
 //    from the tree), then positions by linear least squares given those orientations.
+//  - Chordal (Martinec & Pajdla 2007; Carlone, Tron, Daniilidis, Dellaert, "Initialization
+//    techniques for 3D SLAM", ICRA 2015): each rotation as a unit vector, the chordal
+//    distances |R_j - R_i R_ij|_F^2 minimized linearly with the unit norm dropped, then
+//    normalized; no 2 pi ambiguity to resolve, so large rotation noise on the loop
+//    closures does not throw it off as it can LAGO's tree-based unwrapping. Positions as LAGO.
 // Poses not connected to the anchor keep their input values.
 // Landmarks (pose-only initializers do not place them): from their observations at the
 // initialized poses, l = t_i + R_i z.
@@ -36,6 +41,12 @@ std::vector<SE2> LagoInitialization(const PoseGraph& graph);
 
 /// LAGO's first phase alone: orientations (unwrapped, [rad]) of every pose.
 std::vector<double> LagoOrientations(const PoseGraph& graph, const SpanningTree& tree);
+
+/// Chordal initialization: orientations by the chordal relaxation, then positions as LAGO.
+std::vector<SE2> ChordalInitialization(const PoseGraph& graph);
+
+/// The chordal relaxation's orientations ([rad], in (-pi, pi]; the anchor keeps its own).
+std::vector<double> ChordalOrientations(const PoseGraph& graph, const SpanningTree& tree);
 
 enum class LandmarkPlacement {
   kFirstObservation,  ///< from the first edge observing it
