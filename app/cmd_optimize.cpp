@@ -81,6 +81,8 @@ void RunOptimize(const OptimizeArgs& args) {
                         {"init_requested", InitName(args.init)},
                         {"init_time_s", init_time_s},
                         {"robust", args.robust},
+                        {"robust_chi2_final", result.robust_chi2_final},
+                        {"robust_stages", chosen.robust_stages},
                         {"loop_closures", loop_edges},
                         {"loop_closures_downweighted", downweighted},
                         {"poses", file.graph.poses.size()},
@@ -97,6 +99,8 @@ void RunOptimize(const OptimizeArgs& args) {
       tried.push_back({{"init", InitName(a.init)},
                        {"chi2_initial", a.result.chi2_initial},
                        {"chi2_final", a.result.chi2_final},
+                       {"robust_chi2_final", a.result.robust_chi2_final},
+                       {"robust_stages", a.robust_stages},
                        {"iterations", a.result.iterations},
                        {"termination", a.result.termination}});
     j["init_attempts"] = tried;
@@ -116,7 +120,9 @@ void RunOptimize(const OptimizeArgs& args) {
       std::printf("\n");
     }
     std::printf("robust        %s", args.robust.c_str());
-    if (args.robust != "none") std::printf(" (%d loop closures down-weighted below 0.5)", downweighted);
+    if (args.robust != "none")
+      std::printf(" (%d loop closures down-weighted below 0.5; objective %.6f; %d graduated solve%s)", downweighted,
+                  result.robust_chi2_final, chosen.robust_stages, chosen.robust_stages == 1 ? "" : "s");
     std::printf("\nchi2_initial  %.6f\n", result.chi2_initial);
     std::printf("chi2_final    %.6f\n", result.chi2_final);
     std::printf("iterations    %d\n", result.iterations);

@@ -241,14 +241,17 @@ PoseGraphSolveResult SolvePoseGraph(PoseGraph& graph, const PoseGraphSolveOption
 
   // IRLS weight rho'(chi2_edge) at the solution: 1 for a trusted edge, ~0 for a rejected one.
   result.edge_weights.assign(graph.edges.size(), 1.0);
+  result.robust_chi2_final = result.chi2_final;
   if (loop_loss) {
     for (size_t k = 0; k < graph.edges.size(); ++k) {
       const PoseGraphEdge& edge = graph.edges[k];
       if (!edge.loop_closure) continue;
       const Eigen::Vector3d e = EdgeError(graph.poses[edge.from], graph.poses[edge.to], edge.T_from_to);
+      const double chi2 = e.dot(edge.information * e);
       double rho[3];
-      loop_loss->Evaluate(e.dot(edge.information * e), rho);
+      loop_loss->Evaluate(chi2, rho);
       result.edge_weights[k] = rho[1];
+      result.robust_chi2_final += rho[0] - chi2;
     }
   }
   if (options.compute_marginals && result.usable && !MarginalCovariances(problem, x, l, a, &result)) {

@@ -55,6 +55,9 @@ struct PoseGraphSolveOptions {
 struct PoseGraphSolveResult {
   double chi2_initial = 0.0;  ///< at the input poses, no robust kernel
   double chi2_final = 0.0;    ///< at the solution, no robust kernel
+  /// The objective minimized, at the solution: rho(e^T Omega e) summed over loop closures,
+  /// e^T Omega e over the rest (= chi2_final without a kernel).
+  double robust_chi2_final = 0.0;
   int iterations = 0;          ///< Levenberg-Marquardt steps taken (successful + rejected)
   double time_s = 0.0;         ///< [s] wall time of SolvePoseGraph (problem set-up + solve)
   std::string termination;  ///< Ceres' termination type ("CONVERGENCE", "NO_CONVERGENCE", ...)
