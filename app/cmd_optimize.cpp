@@ -114,9 +114,14 @@ void RunOptimize(const OptimizeArgs& args) {
     std::printf("init          %s (%.3f s)\n", init.c_str(), init_time_s);
     if (attempts.size() > 1) {
       std::printf("auto tried   ");
-      for (const InitAttempt& a : attempts)
-        std::printf(" %s: chi2 %.6g in %d iterations (%s);", InitName(a.init).c_str(), a.result.chi2_final, a.result.iterations,
+      for (const InitAttempt& a : attempts) {
+        std::printf(" %s", InitName(a.init).c_str());
+        if (a.robust_stages > 1) std::printf(" (%d graduated solves)", a.robust_stages);
+        if (args.robust != "none") std::printf(": objective %.6g,", a.result.robust_chi2_final);
+        else std::printf(":");
+        std::printf(" chi2 %.6g in %d iterations (%s);", a.result.chi2_final, a.result.iterations,
                     a.result.termination.c_str());
+      }
       std::printf("\n");
     }
     std::printf("robust        %s", args.robust.c_str());
