@@ -12,10 +12,11 @@
 namespace slambox {
 namespace {
 
-// `auto` keeps the attempt that converged to the lowest objective (robust_chi2_final: with
-// a kernel, the non-robust chi2 of a solution that rejected the outliers counts them in
-// full; usable before not usable, converged before stalled); within 1e-6 relative (Ceres' default function_tolerance, at
-// which each solve stops: the same optimum) the earlier of file, lago, chordal, odometry wins.
+// `auto` keeps the attempt that converged to the lowest objective (robust_chi2_final: with a
+// kernel, the non-robust chi2 of a solution that rejected the outliers counts them in full);
+// usable before not usable, converged before stalled; within 1e-6 relative (Ceres' default
+// function_tolerance, at which each solve stops: the same optimum) the earlier attempt wins
+// (file, lago, chordal, odometry; a guess's plain solve before its graduated one).
 bool Better(const InitAttempt& a, const InitAttempt& b) {
   const auto rank = [](const PoseGraphSolveResult& r) { return (r.usable ? 2 : 0) + (r.termination == "CONVERGENCE"); };
   if (rank(a.result) != rank(b.result)) return rank(a.result) > rank(b.result);
@@ -77,7 +78,7 @@ std::vector<InitAttempt> SolveGuess(PoseGraph guess, InitMethod method, double i
                                     const PoseGraphSolveOptions& options, bool graduate) {
   InitAttempt a{method, init_time_s, std::move(guess), {}};
   std::vector<InitAttempt> out;
-  if (graduate && GraduatedDecades(a.graph, options) > 0) {  // the same guess, graduated (before the plain solve moves it)
+  if (graduate && GraduatedDecades(a.graph, options) > 0) {  // the same guess graduated, before the plain solve moves it
     InitAttempt g = a;
     const GraduatedSolveResult r = SolvePoseGraphGraduated(g.graph, options);
     g.result = r.result;

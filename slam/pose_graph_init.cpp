@@ -161,7 +161,8 @@ std::vector<double> ChordalOrientations(const PoseGraph& graph, const SpanningTr
     }
     if (i >= 0) {
       AddBlock(triplets, i, i, W);
-      if (j >= 0) AddBlock(triplets, i, j, -w * Q.transpose()); else b.segment<2>(2 * i) += w * Q.transpose() * z_anchor;
+      if (j >= 0) AddBlock(triplets, i, j, -w * Q.transpose());
+      else b.segment<2>(2 * i) += w * Q.transpose() * z_anchor;
     }
   }
   Eigen::SparseMatrix<double> A(2 * m, 2 * m);
