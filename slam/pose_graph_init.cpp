@@ -35,11 +35,46 @@ bool Reached(const SpanningTree& tree, const PoseGraph& graph, int v) {
   return v == graph.anchor || tree.parent_edge[v] >= 0;
 }
 
-// Adds the 2x2 block M at block row r, block column c.
-void AddBlock(std::vector<Eigen::Triplet<double>>& triplets, int r, int c, const Eigen::Matrix2d& M) {
-  for (int a = 0; a < 2; ++a)
-    for (int d = 0; d < 2; ++d) triplets.emplace_back(2 * r + a, 2 * c + d, M(a, d));
-}
+// Linear least squares over 2-vectors x_0..x_{m-1}: sum over edges of r^T W r with
+// r = x_j - Q x_i - d; an end with index -1 is held at its given value (the anchor).
+// Normal equations: row j  W x_j - W Q x_i = W d;  row i  Q^T W Q x_i - Q^T W x_j = -Q^T W d.
+class LinearBlockSystem {
+ public:
+  explicit LinearBlockSystem(int unknowns) : m_(unknowns), b_(Eigen::VectorXd::Zero(2 * unknowns)) {}
+
+  void AddEdge(int i, int j, const Eigen::Matrix2d& W, const Eigen::Matrix2d& Q, const Eigen::Vector2d& d,
+               const Eigen::Vector2d& fixed_i, const Eigen::Vector2d& fixed_j) {
+    const Eigen::Matrix2d QtW = Q.transpose() * W;
+    if (j >= 0) {
+      AddBlock(j, j, W);
+      b_.segment<2>(2 * j) += W * d;
+      if (i >= 0) AddBlock(j, i, -W * Q); else b_.segment<2>(2 * j) += W * Q * fixed_i;
+    }
+    if (i >= 0) {
+      AddBlock(i, i, QtW * Q);
+      b_.segment<2>(2 * i) -= QtW * d;
+      if (j >= 0) AddBlock(i, j, -QtW); else b_.segment<2>(2 * i) += QtW * fixed_j;
+    }
+  }
+
+  /// False when the system is singular or the solution not finite.
+  bool Solve(Eigen::VectorXd* x) const {
+    Eigen::SparseMatrix<double> A(2 * m_, 2 * m_);
+    A.setFromTriplets(triplets_.begin(), triplets_.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+    *x = ldlt.solve(b_);
+    return ldlt.info() == Eigen::Success && x->allFinite();
+  }
+
+ private:
+  void AddBlock(int r, int c, const Eigen::Matrix2d& M) {
+    for (int a = 0; a < 2; ++a)
+      for (int d = 0; d < 2; ++d) triplets_.emplace_back(2 * r + a, 2 * c + d, M(a, d));
+  }
+  int m_;
+  Eigen::VectorXd b_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+};
 
 }  // namespace
 
@@ -144,32 +179,16 @@ std::vector<double> ChordalOrientations(const PoseGraph& graph, const SpanningTr
   // z_j = Rot(delta_e) z_i. Minimize sum_e w_e |z_j - Rot(delta_e) z_i|^2 (half the
   // squared chordal distance |R_j - R_i R_e|_F^2) over unconstrained z, z_anchor fixed:
   // linear least squares with no 2 pi ambiguity; theta_i = atan2 of the solution.
-  // Normal equations per edge (Q = Rot(delta_e), Q^T Q = I):
-  //   row j: w (z_j - Q z_i),  row i: w (z_i - Q^T z_j).
-  std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * m);
+  LinearBlockSystem system(m);
   const Eigen::Vector2d z_anchor(std::cos(theta[graph.anchor]), std::sin(theta[graph.anchor]));
   for (const PoseGraphEdge& e : graph.edges) {
     if (!Reached(tree, graph, e.from) || !Reached(tree, graph, e.to)) continue;
     const double w = 1.0 / e.information.inverse()(2, 2);
-    const Eigen::Matrix2d Q = RotationMatrix(e.T_from_to.theta);
-    const Eigen::Matrix2d W = w * Eigen::Matrix2d::Identity();
-    const int i = index[e.from], j = index[e.to];
-    if (j >= 0) {
-      AddBlock(triplets, j, j, W);
-      if (i >= 0) AddBlock(triplets, j, i, -w * Q); else b.segment<2>(2 * j) += w * Q * z_anchor;
-    }
-    if (i >= 0) {
-      AddBlock(triplets, i, i, W);
-      if (j >= 0) AddBlock(triplets, i, j, -w * Q.transpose());
-      else b.segment<2>(2 * i) += w * Q.transpose() * z_anchor;
-    }
+    system.AddEdge(index[e.from], index[e.to], w * Eigen::Matrix2d::Identity(), RotationMatrix(e.T_from_to.theta),
+                   Eigen::Vector2d::Zero(), z_anchor, z_anchor);
   }
-  Eigen::SparseMatrix<double> A(2 * m, 2 * m);
-  A.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-  const Eigen::VectorXd x = ldlt.solve(b);
-  if (ldlt.info() != Eigen::Success || !x.allFinite()) return tree.theta_unwrapped;
+  Eigen::VectorXd x;
+  if (!system.Solve(&x)) return tree.theta_unwrapped;
   for (size_t v = 0; v < index.size(); ++v)
     if (index[v] >= 0 && x.segment<2>(2 * index[v]).norm() > 0)
       theta[v] = std::atan2(x(2 * index[v] + 1), x(2 * index[v]));
@@ -188,31 +207,17 @@ std::vector<SE2> PositionsGivenOrientations(const PoseGraph& graph, const Spanni
   // Given theta, each edge is linear in positions: e = R_i^T (t_j - t_i) - t_ij, i.e.
   // t_j - t_i - R_i t_ij weighted by W = R_i Omega_tt R_i^T (Omega_tt: the 2x2 block, the
   // positional information conditioned on the angles).
-  std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * m);
+  LinearBlockSystem system(m);
   const Eigen::Vector2d t_anchor = graph.poses[graph.anchor].translation();
   for (const PoseGraphEdge& e : graph.edges) {
     if (!Reached(tree, graph, e.from) || !Reached(tree, graph, e.to)) continue;
     const Eigen::Matrix2d R_i = RotationMatrix(theta[e.from]);
     const Eigen::Matrix2d W = R_i * e.information.topLeftCorner<2, 2>() * R_i.transpose();
-    const Eigen::Vector2d Wd = W * (R_i * e.T_from_to.translation());
-    const int i = index[e.from], j = index[e.to];
-    if (j >= 0) {
-      AddBlock(triplets, j, j, W);
-      b.segment<2>(2 * j) += Wd;
-      if (i >= 0) AddBlock(triplets, j, i, -W); else b.segment<2>(2 * j) += W * t_anchor;
-    }
-    if (i >= 0) {
-      AddBlock(triplets, i, i, W);
-      b.segment<2>(2 * i) -= Wd;
-      if (j >= 0) AddBlock(triplets, i, j, -W); else b.segment<2>(2 * i) += W * t_anchor;
-    }
+    system.AddEdge(index[e.from], index[e.to], W, Eigen::Matrix2d::Identity(), R_i * e.T_from_to.translation(),
+                   t_anchor, t_anchor);
   }
-  Eigen::SparseMatrix<double> A(2 * m, 2 * m);
-  A.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-  const Eigen::VectorXd x = ldlt.solve(b);
-  if (ldlt.info() != Eigen::Success || !x.allFinite()) return SpanningTreeInitialization(graph);
+  Eigen::VectorXd x;
+  if (!system.Solve(&x)) return SpanningTreeInitialization(graph);
   for (size_t v = 0; v < index.size(); ++v)
     if (index[v] >= 0) poses[v] = SE2(x(2 * index[v]), x(2 * index[v] + 1), theta[v]);
   return poses;
