@@ -12,7 +12,7 @@ namespace slambox {
 struct ScanPointsConfig {
   double range_min_m = 0.0;   ///< [m] drop closer returns (0 = the scan's own range_min_m)
   double range_max_m = 0.0;   ///< [m] drop farther returns (0 = keep up to the scan's range_max_m)
-  double voxel_size_m = 0.0;  ///< [m] keep the first point per square voxel (0 = off)
+  double voxel_size_m = 0.0;  ///< [m] keep one point per square voxel (VoxelSubsample; 0 = off)
 };
 
 /// Points of one scan with the beam each came from (for projection correspondences and
@@ -24,7 +24,8 @@ struct ScanPoints {
 
 ScanPoints ScanToPoints(const LaserScanEvent& scan, const ScanPointsConfig& config = {});
 
-/// Keeps the first point that falls into each voxel_size_m square, in input order
+/// Keeps, of the points in each voxel_size_m square, the one nearest their centroid (ties:
+/// the earlier), whatever order they come in; voxels in order of first arrival
 /// (deterministic). Returns the kept indices.
 std::vector<int> VoxelSubsample(const std::vector<Eigen::Vector2d>& points, double voxel_size_m);
 
