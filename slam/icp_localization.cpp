@@ -1,5 +1,6 @@
 #include "slam/icp_localization.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include "core/error.hpp"
@@ -12,7 +13,9 @@ namespace slambox {
 void BindParams(IcpLocalizationConfig& c, ParamBinder& b) {
   BindIcpParams(c.icp, b);
   b.Bind("map_spacing_m", c.map_spacing_m, "m", "spacing of the map points sampled along the walls");
-  b.Bind("max_correction_m", c.max_correction_m, "m", "reject an ICP result farther than this from the prediction");
+  b.Bind("max_correction_m", c.max_correction_m, "m",
+         "reject an ICP result farther than this from the prediction, or than 3 sigma of the prediction if larger (also the pair gate of a second try when fewer than half the points pair)");
+  b.Bind("max_correction_deg", c.max_correction_deg, "deg", "reject an ICP result turned farther than this from the prediction, or than 3 sigma if larger");
   b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "covariance: no scan more certain than this (translation)");
   b.Bind("info_cap_sigma_theta_deg", c.info_cap_sigma_theta_deg, "deg", "covariance: ... (heading)");
 }
@@ -25,6 +28,7 @@ IcpLocalization::IcpLocalization(const IcpLocalizationConfig& config)
   };
   positive(config_.map_spacing_m, "map_spacing_m");
   positive(config_.max_correction_m, "max_correction_m");
+  positive(config_.max_correction_deg, "max_correction_deg");
   positive(config_.info_cap_sigma_xy_m, "info_cap_sigma_xy_m");
   positive(config_.info_cap_sigma_theta_deg, "info_cap_sigma_theta_deg");
 }
@@ -58,9 +62,28 @@ void IcpLocalization::OnOdometry(const OdometryEvent& odometry) {
 
 void IcpLocalization::OnLaserScan(const LaserScanEvent& scan) {
   const ScanPoints points = ScanToPoints(scan, {});
-  const IcpResult r = RegisterIcp(points.points, map_, pose_, icp_);
+  // The largest correction accepted: the configured one, or three standard deviations of
+  // the prediction where it is less certain (along a corridor's axis the error of the
+  // odometry builds up unseen and shows only at the next turn).
+  const double sigma_xy_m = std::sqrt(std::max(0.0, covariance_.topLeftCorner<2, 2>().selfadjointView<Eigen::Upper>().eigenvalues().maxCoeff()));
+  const double sigma_theta_deg = std::sqrt(std::max(0.0, covariance_(2, 2))) * 180.0 / M_PI;
+  const double max_correction_m = std::max(config_.max_correction_m, 3.0 * sigma_xy_m);
+  const double max_turn_deg = std::max(config_.max_correction_deg, 3.0 * sigma_theta_deg);
+  IcpResult r = RegisterIcp(points.points, map_, pose_, icp_);
+  if (3.0 * sigma_xy_m > icp_.max_correspondence_m || 2 * r.num_inliers < static_cast<int>(points.points.size())) {
+    // The prediction may be off by more than the pair gate (its 3 sigma is wider, or fewer
+    // than half the points found a wall within the gate): register again with the gate
+    // widened to the largest correction that would be accepted, refine with the usual gate,
+    // and keep whichever pairs more points.
+    IcpConfig wide = icp_;
+    wide.max_correspondence_m = std::max(icp_.max_correspondence_m, max_correction_m);
+    const IcpResult coarse = RegisterIcp(points.points, map_, pose_, wide);
+    IcpResult refined = RegisterIcp(points.points, map_, coarse.T_target_source, icp_);
+    if (refined.num_inliers > r.num_inliers) r = std::move(refined);
+  }
   const double correction_m = (r.T_target_source.translation() - pose_.translation()).norm();
-  const bool ok = r.num_inliers >= icp_.min_inliers && correction_m <= config_.max_correction_m;
+  const double turn_deg = std::abs(NormalizeAngle(r.T_target_source.theta - pose_.theta)) * 180.0 / M_PI;
+  const bool ok = r.num_inliers >= icp_.min_inliers && correction_m <= max_correction_m && turn_deg <= max_turn_deg;
   if (ok) {
     // The scan measures the absolute pose; where ICP is degenerate the prediction's
     // information is kept (IcpEdgeInformation projects it onto those directions).

@@ -4,8 +4,11 @@
 // it by ICP from the odometry-predicted pose; between scans the pose follows odometry.
 // Covariance: the capped ICP covariance at scans (along directions ICP cannot see, e.g.
 // a corridor's axis, the predicted covariance stays), Thrun's odometry model between them.
-// A scan ICP rejects (too few pairs, or a correction beyond max_correction_m) leaves the
-// prediction, so a mover or a dropout does not teleport the robot.
+// A scan ICP rejects (too few pairs, or a correction beyond max_correction_m or
+// max_correction_deg, or 3 sigma of the prediction where that is larger) leaves the prediction, so a mover or a dropout does not teleport the
+// robot. When fewer than half the scan's points pair, ICP is tried again with a pair gate as
+// wide as the largest accepted correction, so an error grown along a corridor's axis is caught
+// when the next corridor makes it observable.
 #include "core/slam_module.hpp"
 #include "slam/edge_information.hpp"
 #include "slam/icp_params.hpp"
@@ -18,6 +21,7 @@ struct IcpLocalizationConfig {
                 .max_correspondence_m = 0.3};
   double map_spacing_m = 0.05;           ///< [m] spacing of the map points along walls
   double max_correction_m = 0.5;         ///< [m] a larger ICP correction of the prediction is rejected
+  double max_correction_deg = 10.0;      ///< [deg] ... a larger turn too
   double info_cap_sigma_xy_m = 0.005;    ///< [m] no scan more certain than this, translation
   double info_cap_sigma_theta_deg = 0.1; ///< [deg] ... heading
 };
