@@ -65,21 +65,30 @@ void IcpLocalization::OnLaserScan(const LaserScanEvent& scan) {
   // The largest correction accepted: the configured one, or three standard deviations of
   // the prediction where it is less certain (along a corridor's axis the error of the
   // odometry builds up unseen and shows only at the next turn).
-  const double sigma_xy_m = std::sqrt(std::max(0.0, covariance_.topLeftCorner<2, 2>().selfadjointView<Eigen::Upper>().eigenvalues().maxCoeff()));
+  const Eigen::Matrix2d cov_xy = covariance_.topLeftCorner<2, 2>();
+  const double sigma_xy_m = std::sqrt(std::max(0.0, cov_xy.selfadjointView<Eigen::Upper>().eigenvalues().maxCoeff()));
   const double sigma_theta_deg = std::sqrt(std::max(0.0, covariance_(2, 2))) * 180.0 / M_PI;
   const double max_correction_m = std::max(config_.max_correction_m, 3.0 * sigma_xy_m);
   const double max_turn_deg = std::max(config_.max_correction_deg, 3.0 * sigma_theta_deg);
-  IcpResult r = RegisterIcp(points.points, map_, pose_, icp_);
-  if (3.0 * sigma_xy_m > icp_.max_correspondence_m || 2 * r.num_inliers < static_cast<int>(points.points.size())) {
-    // The prediction may be off by more than the pair gate (its 3 sigma is wider, or fewer
-    // than half the points found a wall within the gate): register again with the gate
-    // widened to the largest correction that would be accepted, refine with the usual gate,
-    // and keep whichever pairs more points.
-    IcpConfig wide = icp_;
-    wide.max_correspondence_m = std::max(icp_.max_correspondence_m, max_correction_m);
-    const IcpResult coarse = RegisterIcp(points.points, map_, pose_, wide);
-    IcpResult refined = RegisterIcp(points.points, map_, coarse.T_target_source, icp_);
-    if (refined.num_inliers > r.num_inliers) r = std::move(refined);
+  // Where the prediction may be off by more than the pair gate, ICP starts with the gate
+  // widened to the largest correction that would be accepted and is refined with the usual
+  // one: at once when the prediction's 3 sigma is wider than the gate, else as a second try
+  // when fewer than half the points found a wall within the gate (then the try that pairs
+  // more points is kept).
+  IcpConfig wide = icp_;
+  wide.max_correspondence_m = std::max(icp_.max_correspondence_m, max_correction_m);
+  auto wide_then_fine = [&] {
+    return RegisterIcp(points.points, map_, RegisterIcp(points.points, map_, pose_, wide).T_target_source, icp_);
+  };
+  IcpResult r;
+  if (3.0 * sigma_xy_m > icp_.max_correspondence_m) {
+    r = wide_then_fine();
+  } else {
+    r = RegisterIcp(points.points, map_, pose_, icp_);
+    if (2 * r.num_inliers < static_cast<int>(points.points.size())) {
+      IcpResult second = wide_then_fine();
+      if (second.num_inliers > r.num_inliers) r = std::move(second);
+    }
   }
   const double correction_m = (r.T_target_source.translation() - pose_.translation()).norm();
   const double turn_deg = std::abs(NormalizeAngle(r.T_target_source.theta - pose_.theta)) * 180.0 / M_PI;

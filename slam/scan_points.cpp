@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 namespace slambox {

@@ -1,7 +1,9 @@
 #pragma once
-// Test support for the ICP modules: a synthetic ring corridor with pillars, its stream,
+// Test support for the ICP modules: a synthetic ring corridor with pillars and a featureless
+// rectangular corridor, their streams,
 // and the position RMSE of an estimate against ground truth at shared timestamps.
 #include <Eigen/Cholesky>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -42,6 +44,26 @@ inline Stream RingStream(std::uint64_t seed, int laps) {
   lidar.range_max_m = 30;
   o.sensors.lidar = lidar;
   return MakeSyntheticStream(o, RingWorld());
+}
+
+/// One lap around a featureless rectangular corridor: the robot drives the rectangle
+/// (1.7, 1.7)-(51.3, 27.3) at 1.5 m/s between walls half_width_m either side of its path.
+inline Stream RectangleCorridorStream(double half_width_m, std::uint64_t seed, const std::array<double, 4>& alpha,
+                                      const LidarConfig& lidar) {
+  const Eigen::Vector2d lo(1.7, 1.7), hi(51.3, 27.3), h(half_width_m, half_width_m);
+  const Eigen::Vector2d outer_lo = lo - h, outer_hi = hi + h, inner_lo = lo + h, inner_hi = hi - h;
+  World w;
+  w.wall_segments = Polyline({outer_lo, {outer_hi.x(), outer_lo.y()}, outer_hi, {outer_lo.x(), outer_hi.y()}}, true);
+  const auto inner = Polyline({inner_lo, {inner_hi.x(), inner_lo.y()}, inner_hi, {inner_lo.x(), inner_hi.y()}}, true);
+  w.wall_segments.insert(w.wall_segments.end(), inner.begin(), inner.end());
+  SyntheticOptions o;
+  o.path = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  o.speed_mps = 1.5;
+  o.seed = seed;
+  o.sensors.odometry = OdometryConfig{};
+  o.sensors.odometry->alpha = alpha;
+  o.sensors.lidar = lidar;
+  return MakeSyntheticStream(o, w);
 }
 
 /// RMSE of the estimated positions at the ground-truth times they share (no alignment).
