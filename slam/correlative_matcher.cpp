@@ -66,6 +66,9 @@ CorrelativeMatch ToMatch(const ScoreTable& table, const Lattice& l, const SE2& g
   m.evaluated = evaluated;
   if (!found) return m;
   m.score = best.score;
+  const int n_theta = static_cast<int>(l.scans.size() / 2);
+  m.at_window_edge = std::abs(best.x) == l.window_cells || std::abs(best.y) == l.window_cells ||
+                     (n_theta > 0 && std::abs(best.rotation - n_theta) == n_theta);
   m.T_map_source = SE2(guess.x + best.x * table.resolution_m, guess.y + best.y * table.resolution_m,
                        NormalizeAngle(l.scans[static_cast<size_t>(best.rotation)].theta_rad));
   return m;

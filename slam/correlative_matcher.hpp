@@ -67,6 +67,10 @@ struct CorrelativeMatch {
   int evaluated = 0;   ///< candidate scores computed (bounds and leaves), for cost reports
   /// Best score farther than runner_up_radius_m from T_map_source (0 when none or not asked).
   double runner_up_score = 0.0;
+  /// The best pose lies on the window's boundary (outermost translation cell in x or y, or
+  /// outermost rotation): the score still rises outwards there, so it is no local optimum and
+  /// the true pose is likely outside the window.
+  bool at_window_edge = false;
 };
 
 /// Branch-and-bound search: the exhaustive optimum's score over the lattice (between

@@ -56,6 +56,7 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("loop_max_candidates", c.loop.max_candidates, "-", "loop verifications per keyframe");
   b.Bind("loop_min_keyframe_gap", c.loop.min_keyframe_gap, "-", "candidates at least this many keyframes apart");
   b.Bind("loop_submap_keyframes", c.loop_submap_keyframes, "-", "loop target: keyframes each side of the candidate");
+  b.Bind("loop_min_source_points", c.loop_min_source_points, "-", "loop source: earlier keyframes (up to loop_submap_keyframes) join a scan with fewer points", AtLeast(0));
   b.Bind("loop_table_resolution_m", c.loop_table.resolution_m, "m", "correlative search grid cell", Above(0));
   b.Bind("loop_table_sigma_m", c.loop_table.sigma_m, "m", "correlative score: std of the point-to-map distance", Above(0));
   b.Bind("loop_table_levels", c.loop_table.levels, "-", "branch-and-bound levels", AtLeast(1));
@@ -63,6 +64,7 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("loop_runner_up_radius_m", c.loop_runner_up_radius_m, "m", "ambiguity: runner-up match farther than this from the best");
   b.Bind("loop_max_runner_up_ratio", c.loop_max_runner_up_ratio, "-", "ambiguity: runner-up score / best score must stay below this");
   b.Bind("loop_max_match_shift_m", c.loop_max_match_shift_m, "m", "ICP may move the correlative match at most this far");
+  b.Bind("loop_reject_window_edge", c.loop_reject_window_edge, "-", "reject a correlative optimum on the search window's edge (the score still rises outwards)");
   b.Bind("loop_region", c.loop_region, "-", "region loop search where no candidate closed: old keyframes within the scan's median range, passes merged where they agree");
   b.Bind("loop_region_overlap_m", c.loop_region_passes.overlap_m, "m", "region: a pass's point with an admitted point this close is in their overlap", Above(0));
   b.Bind("loop_region_min_overlap", c.loop_region_passes.min_overlap_fraction, "-", "region: a pass must overlap the admitted ones with this fraction of its points (and score loop_min_score there)");
@@ -279,13 +281,14 @@ void IcpPoseSlam::CloseLoops(double t_s) {
   const std::vector<Eigen::Matrix3d> rel = RelativeCovariances(graph_, k, use_edge, 2.0 * cap_sigma * cap_sigma);
   bool added = false;
   double innovation_m = 0.0;
+  const std::vector<Eigen::Vector2d> source = LoopSource();
   for (const LoopCandidate& c : FindLoopCandidates(graph_.poses, path, k, config_.loop, rel)) {
     const LoopTarget& target = LoopTargetFor(c.keyframe);
-    added = TryLoop(c.keyframe, target.table, [&]() -> const IcpTarget& { return target.cloud; }, c.radius_m,
+    added = TryLoop(c.keyframe, source, target.table, [&]() -> const IcpTarget& { return target.cloud; }, c.radius_m,
                     c.angle_rad, &innovation_m);
     if (added) break;  // one closure per keyframe; the solve below moves the rest
   }
-  if (!added && config_.loop_region) added = CloseLoopInRegion(rel, path, &innovation_m);
+  if (!added && config_.loop_region) added = CloseLoopInRegion(source, rel, path, &innovation_m);
   estimate_.diagnostics["loop_closures_proposed"].emplace_back(t_s, proposed_);
   pending_closures_ = pending_closures_ || added;
   ++keyframes_since_solve_;

@@ -74,11 +74,17 @@ struct IcpPoseSlamConfig {
   double fixed_sigma_theta_deg = 0.5;    ///< [deg] fixed information, heading
   LoopClosureConfig loop;
   int loop_submap_keyframes = 5;         ///< loop target: the candidate keyframe and this many on each side
+  /// Loop source: the new keyframe's scan, joined by up to loop_submap_keyframes keyframes
+  /// before it (placed by the front end) while it has fewer points than this. A sparse scan
+  /// (a 91-beam LIDAR in a wide hall sees 20-40 points) scores a wrong pose as high as the
+  /// right one by chance; Cartographer's loop-closure voxel filter keeps >= 100 points too.
+  int loop_min_source_points = 100;
   ScoreTableConfig loop_table{.resolution_m = 0.05, .sigma_m = 0.05, .levels = 5};  ///< correlative search grid
   double loop_min_score = 0.6;           ///< correlative score (mean of exp(-d^2/2 sigma^2)) a closure needs
   double loop_runner_up_radius_m = 0.5;  ///< [m] ambiguity: best score farther than this from the match ...
   double loop_max_runner_up_ratio = 0.95;  ///< ... must stay below this fraction of the match's score
   double loop_max_match_shift_m = 0.1;   ///< [m] ICP may move the correlative match at most this far
+  bool loop_reject_window_edge = true;   ///< a correlative optimum on the search window's edge is no closure
   /// Region loop search (slam/loop_region.hpp): at a keyframe where no candidate's submap
   /// closed a loop, the target is the union of the old keyframes within the new scan's
   /// median range (plus each one's search window) of it, admitted pass by pass where the
@@ -134,11 +140,13 @@ class IcpPoseSlam : public SlamModule {
   /// Correlative match of the newest keyframe against `table` (frame of keyframe `from`) in
   /// the window, ICP refinement against cloud() and verification; on success a loop edge
   /// from -> newest is added and its innovation returned. (slam/icp_poseslam_loop.cpp)
-  bool TryLoop(int from, const ScoreTable& table, const std::function<const IcpTarget&()>& cloud, double radius_m,
+  bool TryLoop(int from, const std::vector<Eigen::Vector2d>& source, const ScoreTable& table, const std::function<const IcpTarget&()>& cloud, double radius_m,
                double angle_rad, double* innovation_m);
   /// The region search (slam/loop_region.hpp) at the newest keyframe. (slam/icp_poseslam_loop.cpp)
-  bool CloseLoopInRegion(const std::vector<Eigen::Matrix3d>& relative_cov, const std::vector<double>& path,
-                         double* innovation_m);
+  bool CloseLoopInRegion(const std::vector<Eigen::Vector2d>& source, const std::vector<Eigen::Matrix3d>& relative_cov,
+                         const std::vector<double>& path, double* innovation_m);
+  /// The newest keyframe's points, with earlier keyframes' while below loop_min_source_points.
+  std::vector<Eigen::Vector2d> LoopSource() const;
   const LoopTarget& LoopTargetFor(int keyframe);
   PoseGraphSolveResult Solve(bool marginals = false);
   InformationCaps Caps() const;

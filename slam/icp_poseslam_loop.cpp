@@ -13,10 +13,24 @@ namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 }  // namespace
 
-bool IcpPoseSlam::TryLoop(int from, const ScoreTable& table, const std::function<const IcpTarget&()>& cloud,
-                          double radius_m, double angle_rad, double* innovation_m) {
+std::vector<Eigen::Vector2d> IcpPoseSlam::LoopSource() const {
   const int k = static_cast<int>(keyframes_.size()) - 1;
-  const std::vector<Eigen::Vector2d>& source = keyframes_.back().points.points;
+  std::vector<Eigen::Vector2d> source = keyframes_.back().points.points;
+  // Older keyframes in the newest one's frame; their relative poses are the front end's
+  // (no closure between them), accurate over the few metres this spans.
+  for (int i = k - 1; i >= std::max(0, k - config_.loop_submap_keyframes) &&
+                      static_cast<int>(source.size()) < config_.loop_min_source_points;
+       --i) {
+    const SE2 T_k_i = Between(graph_.poses.back(), graph_.poses[static_cast<size_t>(i)]);
+    for (const auto& p : keyframes_[static_cast<size_t>(i)].points.points) source.push_back(T_k_i * p);
+  }
+  return source;
+}
+
+bool IcpPoseSlam::TryLoop(int from, const std::vector<Eigen::Vector2d>& source, const ScoreTable& table,
+                          const std::function<const IcpTarget&()>& cloud, double radius_m, double angle_rad,
+                          double* innovation_m) {
+  const int k = static_cast<int>(keyframes_.size()) - 1;
   const SE2 guess = Between(graph_.poses[static_cast<size_t>(from)], graph_.poses.back());
   CorrelativeSearchConfig search;
   search.linear_window_m = radius_m;
@@ -26,7 +40,10 @@ bool IcpPoseSlam::TryLoop(int from, const ScoreTable& table, const std::function
   const CorrelativeMatch m = MatchCorrelative(table, source, guess, search);
   ++proposed_;
   const double t_old = keyframes_[static_cast<size_t>(from)].t_s;
-  if (!m.found || m.runner_up_score >= config_.loop_max_runner_up_ratio * m.score) {  // no match, or ambiguous
+  // No match, an ambiguous one, or one on the window's edge (a window drawn from a graph that
+  // is surer than it should be, e.g. along a corridor: the true pose lies beyond it).
+  if (!m.found || m.runner_up_score >= config_.loop_max_runner_up_ratio * m.score ||
+      (config_.loop_reject_window_edge && m.at_window_edge)) {
     estimate_.loop_closures.push_back({t_old, keyframes_.back().t_s, guess, false});
     return false;
   }
@@ -50,10 +67,10 @@ bool IcpPoseSlam::TryLoop(int from, const ScoreTable& table, const std::function
   return true;
 }
 
-bool IcpPoseSlam::CloseLoopInRegion(const std::vector<Eigen::Matrix3d>& relative_cov, const std::vector<double>& path,
+bool IcpPoseSlam::CloseLoopInRegion(const std::vector<Eigen::Vector2d>& source,
+                                    const std::vector<Eigen::Matrix3d>& relative_cov, const std::vector<double>& path,
                                     double* innovation_m) {
   const int k = static_cast<int>(keyframes_.size()) - 1;
-  const std::vector<Eigen::Vector2d>& source = keyframes_.back().points.points;
   if (source.empty()) return false;
   // The scan's reach: the median range of its points (half of what it sees is closer).
   std::vector<double> ranges;
@@ -126,7 +143,7 @@ bool IcpPoseSlam::CloseLoopInRegion(const std::vector<Eigen::Matrix3d>& relative
   if (thinned.empty()) return false;
   const ScoreTable table = MakeScoreTable(thinned, config_.loop_table);
   std::optional<IcpTarget> cloud;  // built only when the correlative match passes
-  const bool added = TryLoop(anchor, table, [&]() -> const IcpTarget& {
+  const bool added = TryLoop(anchor, source, table, [&]() -> const IcpTarget& {
     if (!cloud) cloud = MakeCloudTarget(thinned);
     return *cloud;
   }, radius, angle, innovation_m);

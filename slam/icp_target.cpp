@@ -1,5 +1,6 @@
 #include "slam/icp_target.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -123,7 +124,7 @@ IcpTarget MakeCloudTarget(std::vector<Eigen::Vector2d> points, const IcpTargetCo
   t.points = std::move(points);
   t.kd_tree = std::make_shared<LazyKdTree>();
   const KdTree2d& tree = t.kd_tree->Get(t.points);
-  const size_t k = static_cast<size_t>(2 * config.normal_half_window + 1);
+  const size_t k = static_cast<size_t>(std::max(config.normal_neighbors, 1));
   const double max2 = config.normal_max_neighbor_m * config.normal_max_neighbor_m;
   std::vector<std::uint32_t> idx(k);
   std::vector<double> d2(k);

@@ -41,7 +41,12 @@ struct IcpTarget {
 };
 
 struct IcpTargetConfig {
-  int normal_half_window = 2;          ///< neighbours on each side (beams or kNN/2) in the normal fit
+  int normal_half_window = 2;          ///< scans: beams on each side in the normal fit
+  /// Clouds: the normal fit's k nearest (within normal_max_neighbor_m). Enough to span that
+  /// radius at a local map's 5 cm voxels: k = 5 spans 0.2 m there, and with 3 cm range noise
+  /// such a fit tilts by ~10 deg, which point-to-line reads as information along a featureless
+  /// corridor (slam/README.md, "Normals from five neighbours").
+  int normal_neighbors = 15;
   double normal_max_neighbor_m = 0.3;  ///< [m] neighbours farther from the point are not on its surface
   /// true: build the kd-tree now; false: on the first kd-tree query (projection never needs it)
   bool build_kd_tree = false;

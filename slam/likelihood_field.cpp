@@ -77,7 +77,7 @@ DistanceGrid MakeDistanceGrid(const std::vector<Eigen::Vector2d>& occupied, doub
     for (int y = 0; y < g.height; ++y) d2[static_cast<size_t>(y) * g.width + x] = line[y];
   }
   g.distance_m.assign(d2.size(), static_cast<float>(max_distance_m));
-  const IcpTarget cloud = MakeCloudTarget(occupied, {.normal_half_window = 1, .build_kd_tree = true});
+  const IcpTarget cloud = MakeCloudTarget(occupied, {.normal_neighbors = 3, .build_kd_tree = true});
   // Cells whose grid distance is within the clamp plus the half-diagonal of two cells.
   const double band_cells = max_distance_m / resolution_m + 1.5;
   for (int y = 0; y < g.height; ++y) {

@@ -93,6 +93,35 @@ TEST(CorrelativeMatcher, RunnerUpExposesCorridorAmbiguity) {
   EXPECT_LT(ratio(testing::RoomWalls(), SE2(-1, -0.5, 0), SE2(0.3, 0.05, 0.02)), 0.8);
 }
 
+// The window is meant to hold the true pose. When it does, the optimum lies inside it; when
+// the truth lies beyond it (a window drawn too small), the best the window holds sits on its
+// boundary, where the score still rises outwards.
+TEST(CorrelativeMatcher, FlagsAnOptimumOnTheWindowEdge) {
+  std::mt19937_64 rng(7);
+  const auto walls = testing::RoomWalls();
+  const SE2 A(-1, -0.5, 0), T(0.6, -0.2, 4 * M_PI / 180);
+  const LaserScanEvent a = testing::RayCastScan(walls, A, 360, 0.01, rng);
+  const LaserScanEvent b = testing::RayCastScan(walls, A * T, 360, 0.01, rng);
+  const ScoreTable t = MakeScoreTable(ScanToPoints(a).points, {});
+  const std::vector<Eigen::Vector2d> source = ScanToPoints(b).points;
+  const auto match = [&](double window_m, double window_deg) {
+    return MatchCorrelative(t, source, SE2(), {.linear_window_m = window_m, .angular_window_deg = window_deg});
+  };
+  const CorrelativeMatch inside = match(1.0, 8);
+  ASSERT_TRUE(inside.found);
+  EXPECT_FALSE(inside.at_window_edge);
+  EXPECT_NEAR(inside.T_map_source.x, T.x, 0.06);
+  EXPECT_NEAR(inside.T_map_source.y, T.y, 0.06);
+  const CorrelativeMatch short_x = match(0.3, 8);  // the truth is 0.6 m away in x
+  ASSERT_TRUE(short_x.found);
+  EXPECT_TRUE(short_x.at_window_edge);
+  EXPECT_NEAR(short_x.T_map_source.x, 0.3, 1e-9);
+  const CorrelativeMatch short_theta = match(1.0, 1.5);  // ... and 4 deg away in heading
+  ASSERT_TRUE(short_theta.found);
+  EXPECT_TRUE(short_theta.at_window_edge);
+  EXPECT_FALSE(MatchCorrelative(t, {{50, 50}}, SE2(), {.linear_window_m = 0.3, .min_score = 0.1}).at_window_edge);
+}
+
 TEST(CorrelativeMatcher, MinScorePrunesEverything) {
   const ScoreTable t = MakeScoreTable({{0, 0}, {1, 0}}, {});
   const CorrelativeMatch m = MatchCorrelative(t, {{5, 5}}, SE2(), {.linear_window_m = 0.2, .min_score = 0.1});

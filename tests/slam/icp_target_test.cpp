@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "slam/icp_target.hpp"
@@ -128,6 +129,30 @@ TEST(IcpTarget, KdTreeOnFirstUseMatchesEagerAndBruteForce) {
       EXPECT_DOUBLE_EQ(d2, (points.points[static_cast<size_t>(brute)] - q).squaredNorm());
     }
   }
+}
+
+// A local map's wall: points every 5 cm (its voxel size) with 3 cm of noise across. A line fit
+// over k points spanning L has an angular error of about sigma / sqrt(sum (t - mean)^2): 11 deg
+// for five points (0.2 m), 2.5 deg for all within normal_max_neighbor_m (0.6 m).
+TEST(IcpTarget, CloudNormalsSpanEnoughWallToOutweighItsNoise) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.03);
+  std::vector<Eigen::Vector2d> wall;
+  for (int i = 0; i <= 200; ++i) wall.emplace_back(0.05 * i, noise(rng));
+  const auto rms_tilt_deg = [&](const IcpTarget& t) {
+    double sum = 0;
+    int n = 0;
+    for (size_t i = 10; i + 10 < t.points.size(); ++i) {  // away from the ends
+      const double tilt = std::asin(std::min(1.0, std::abs(t.normals[i].x())));
+      sum += tilt * tilt, ++n;
+    }
+    return std::sqrt(sum / n) * 180 / M_PI;
+  };
+  const double wide = rms_tilt_deg(MakeCloudTarget(wall));
+  const double five = rms_tilt_deg(MakeCloudTarget(wall, {.normal_neighbors = 5}));
+  std::printf("normal tilt RMS: %.1f deg (default), %.1f deg (five neighbours)\n", wide, five);
+  EXPECT_LT(wide, 4.0);
+  EXPECT_GT(five, 8.0);
 }
 
 TEST(ScanPoints, CachedDirectionsEqualDirectTrigonometryWhenGeometryChanges) {
