@@ -78,6 +78,10 @@ void IcpLocalization::OnLaserScan(const LaserScanEvent& scan) {
   // more points is kept).
   IcpConfig wide = icp_;
   wide.max_correspondence_m = std::max(icp_.max_correspondence_m, max_correction_m);
+  // ... and its robust kernel as wide as its gate: under the fine kernel (Geman-McClure at
+  // 5 cm) a pair 0.5 m off weighs ~1e-4, so the very points that show a large error (a leg's
+  // end wall) would have no say, and their direction would stay degenerate.
+  wide.robust_scale_m = std::max(icp_.robust_scale_m, wide.max_correspondence_m);
   auto wide_then_fine = [&] {
     return RegisterIcp(points.points, map_, RegisterIcp(points.points, map_, pose_, wide).T_target_source, icp_);
   };
