@@ -75,7 +75,7 @@ struct IcpPoseSlamConfig {
   LoopClosureConfig loop;
   int loop_submap_keyframes = 5;         ///< loop target: the candidate keyframe and this many on each side
   /// Loop source: the new keyframe's scan, joined by up to loop_submap_keyframes keyframes
-  /// before it (placed by the front end) while it has fewer points than this. A sparse scan
+  /// before it (placed by the current estimate) while it has fewer points than this. A sparse scan
   /// (a 91-beam LIDAR in a wide hall sees 20-40 points) scores a wrong pose as high as the
   /// right one by chance; Cartographer's loop-closure voxel filter keeps >= 100 points too.
   int loop_min_source_points = 100;
@@ -137,11 +137,13 @@ class IcpPoseSlam : public SlamModule {
   /// edge_icp: the ICP result joining it to the previous keyframe, or null (odometry edge).
   void AddKeyframe(const LaserScanEvent& scan, ScanPoints points, const IcpResult* edge_icp);
   void CloseLoops(double t_s);
-  /// Correlative match of the newest keyframe against `table` (frame of keyframe `from`) in
-  /// the window, ICP refinement against cloud() and verification; on success a loop edge
-  /// from -> newest is added and its innovation returned. (slam/icp_poseslam_loop.cpp)
-  bool TryLoop(int from, const std::vector<Eigen::Vector2d>& source, const ScoreTable& table, const std::function<const IcpTarget&()>& cloud, double radius_m,
-               double angle_rad, double* innovation_m);
+  /// Correlative match of `source` (LoopSource(), newest keyframe's frame) against `table`
+  /// (frame of keyframe `from`) in the window, ICP refinement against cloud() and
+  /// verification; on success a loop edge from -> newest is added and its innovation
+  /// returned. (slam/icp_poseslam_loop.cpp)
+  bool TryLoop(int from, const std::vector<Eigen::Vector2d>& source, const ScoreTable& table,
+               const std::function<const IcpTarget&()>& cloud, double radius_m, double angle_rad,
+               double* innovation_m);
   /// The region search (slam/loop_region.hpp) at the newest keyframe. (slam/icp_poseslam_loop.cpp)
   bool CloseLoopInRegion(const std::vector<Eigen::Vector2d>& source, const std::vector<Eigen::Matrix3d>& relative_cov,
                          const std::vector<double>& path, double* innovation_m);
