@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 
 #include "slam/range_bearing.hpp"
 
@@ -123,6 +126,104 @@ TEST(DataAssociation, ConditionalInnovationIsTheInverseOfTheInformationBlock) {
   // A single pair: its own S.
   const Eigen::MatrixXd S1 = JointInnovationOf(s, z, kR, {{0, 0}}).S;
   EXPECT_EQ(ConditionalInnovationCovariances(S1)[0], Eigen::Matrix2d(S1));
+}
+
+/// Robot near the origin and `n` landmarks on a ring 6-10 m away, with a dense, correlated
+/// covariance (a random P = A A^T + small diagonal), as after a long drive.
+EkfSlamState CorrelatedState(int n, unsigned seed) {
+  std::srand(seed);
+  EkfSlamState s = MakeInitialState(SE2(0.3, -0.2, 0.1));
+  s.mean.conservativeResize(3 + 2 * n);
+  for (int j = 0; j < n; ++j) {
+    const double a = 2.0 * M_PI * j / n, r = 6.0 + 4.0 * j / n;
+    s.mean.segment<2>(3 + 2 * j) << r * std::cos(a), r * std::sin(a);
+  }
+  const Eigen::MatrixXd A = 0.05 * Eigen::MatrixXd::Random(3 + 2 * n, 3 + 2 * n);
+  s.covariance = A * A.transpose();
+  s.covariance.diagonal().array() += 1e-4;
+  return s;
+}
+
+TEST(DataAssociation, JointInnovationIsTheDenseProductOverTheSubState) {
+  // S = H P H^T + blockdiag(R) with H the 2k x (3 + 2n) Jacobian of every pairing,
+  // built densely here; JointInnovationOf assembles it from covariance blocks.
+  const EkfSlamState s = CorrelatedState(6, 3);
+  std::vector<Eigen::Vector2d> z;
+  for (int j = 0; j < 6; ++j) z.push_back(Measure(s, j, 0.05));
+  const std::vector<std::pair<int, int>> pairs = {{4, 4}, {0, 0}, {2, 3}, {5, 1}, {3, 2}};
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(10, 15);
+  for (int q = 0; q < 5; ++q) {
+    const ObservationPrediction p = PredictObservation(s.Pose(), s.Landmark(pairs[q].second));
+    H.block<2, 3>(2 * q, 0) = p.J_z_pose;
+    H.block<2, 2>(2 * q, 3 + 2 * pairs[q].second) = p.J_z_landmark;
+  }
+  Eigen::MatrixXd expected = H * s.covariance * H.transpose();
+  for (int q = 0; q < 5; ++q) expected.block<2, 2>(2 * q, 2 * q) += kR;
+  const JointInnovation j = JointInnovationOf(s, z, kR, pairs);
+  EXPECT_LT((j.S - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_EQ(j.S, j.S.transpose());
+  // A pair's conditional covariance, straight from the Schur complement.
+  const auto conditional = ConditionalInnovationCovariances(j.S);
+  Eigen::MatrixXd S_rest(8, 8), S_rq(8, 2);
+  const std::vector<int> rest = {0, 1, 2, 3, 6, 7, 8, 9};  // all but pair 2
+  for (int a = 0; a < 8; ++a) {
+    for (int b = 0; b < 8; ++b) S_rest(a, b) = j.S(rest[a], rest[b]);
+    S_rq.row(a) = j.S.block<1, 2>(rest[a], 4);
+  }
+  const Eigen::Matrix2d schur = j.S.block<2, 2>(4, 4) - S_rq.transpose() * S_rest.inverse() * S_rq;
+  EXPECT_LT((conditional[2] - schur).norm(), 1e-9 * schur.norm());
+}
+
+TEST(DataAssociation, JcbbPicksTheLargestJointlyCompatibleHypothesisOfAnExhaustiveSearch) {
+  // JCBB grows the joint d^2 one pairing at a time; an exhaustive search over every
+  // injective assignment with the direct joint d^2 (each prefix gated, as in the tree)
+  // must agree with it. Landmarks 0.6 m
+  // apart and a pose with ~0.3 m of uncertainty: many individually compatible pairings.
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    EkfSlamState s = CorrelatedState(5, seed);
+    for (int j = 0; j < 5; ++j) s.mean.segment<2>(3 + 2 * j) << 8.0, -1.2 + 0.6 * j;
+    std::vector<Eigen::Vector2d> z;
+    for (int j : {1, 2, 3, 4}) z.push_back(Measure(s, j, 0.25 * (seed % 3)));
+    const AssociationGates gates;
+    const Association a = AssociateJcbb(s, z, kR, gates);
+    std::vector<std::pair<int, int>> best;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    std::vector<int> choice(z.size(), -1);  // -1 unpaired, else landmark
+    const int n = s.NumLandmarks();
+    int total = 1;
+    for (size_t i = 0; i < z.size(); ++i) total *= n + 1;
+    for (int code = 0; code < total; ++code) {
+      std::vector<std::pair<int, int>> pairs;
+      std::vector<bool> used(n, false);
+      bool valid = true;
+      for (int i = 0, c = code; i < static_cast<int>(z.size()); ++i, c /= n + 1) {
+        const int j = c % (n + 1) - 1;
+        if (j < 0) continue;
+        if (used[j] || MahalanobisSquared(s, j, z[i], kR) >= gates.accept_chi2) valid = false;
+        used[j] = true;
+        pairs.emplace_back(i, j);
+      }
+      if (!valid || pairs.empty()) continue;
+      // JCBB's hypotheses are jointly compatible at every level of the tree: every prefix
+      // (in observation order) passes its own gate.
+      for (size_t k = 1; k <= pairs.size() && valid; ++k) {
+        const std::vector<std::pair<int, int>> prefix(pairs.begin(), pairs.begin() + k);
+        valid = JointMahalanobisSquared(s, z, kR, prefix) < ChiSquareQuantile(gates.joint_probability, 2.0 * k);
+      }
+      if (!valid) continue;
+      const double d2 = JointMahalanobisSquared(s, z, kR, pairs);
+      if (pairs.size() > best.size() || (pairs.size() == best.size() && d2 < best_d2)) {
+        best = pairs;
+        best_d2 = d2;
+      }
+    }
+    ASSERT_FALSE(best.empty()) << seed;
+    std::vector<int> expected(z.size(), -1);
+    for (const auto& [i, j] : best) expected[i] = j;
+    for (size_t i = 0; i < z.size(); ++i)
+      if (expected[i] >= 0) EXPECT_EQ(a.landmark[i], expected[i]) << "seed " << seed << " observation " << i;
+    EXPECT_GT(a.jcbb_nodes, 0);
+  }
 }
 
 }  // namespace
