@@ -74,6 +74,11 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
          "the measured birth density, P_D(range) and existence of the landmarks, their expected detections in view), "
          "and the branch ahead by log((1-a)/a), a = 1 - P[chi2(2) < gate_accept_chi2], goes on alone (graphslam: its "
          "graph takes the surviving branch's association of those scans)");
+  b.Bind("recover_heading", c.recover_heading, "-",
+         "unknown ids: a scan pairing no confirmed landmark where the map expects lambda detections in view "
+         "(exp(-lambda) below the gate's miss probability) contradicts the predicted heading: its association is "
+         "searched again with the heading's standard deviation widened 2, 4, 8, 16 times, the first pairing two or "
+         "more confirmed landmarks kept with that variance (slam/ekf_slam_recovery.cpp)");
   b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
   b.Bind("update_iterations", c.update_iterations, "-",
          "iterated EKF: Gauss-Newton steps of each scan's update, relinearized at the iterate (1 = plain EKF)", AtLeast(1));
@@ -174,6 +179,8 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   if (known_ids_) target = AssociateKnownIds(obs);
   else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
   else target = AssociateJcbb(state_, z, R_, gates).landmark;
+  if (!known_ids_ && config_.association != EkfAssociation::kNearestNeighbour && config_.recover_heading)
+    target = RecoverHeading(z, gates, std::move(target), event.t_s);
   const std::vector<bool> held = HoldPairings(z, target);
   if (blocks_closures_) BlockUncertainClosures(z, target);
   const bool testing = !closure_rival_.empty();

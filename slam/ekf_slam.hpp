@@ -72,6 +72,7 @@ struct EkfSlamConfig {
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
   bool closure_test = true;             ///< unknown ids: a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
+  bool recover_heading = true;         ///< unknown ids: re-associate a scan that contradicts the predicted heading under a wider heading prior (slam/ekf_slam_recovery.cpp)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   int update_iterations = 1;            ///< [-] iterated EKF update: relinearizations per scan (1 = EKF; slam/ekf_slam_filter.hpp)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
@@ -137,6 +138,10 @@ class EkfSlam : public SlamModule {
                        double t_s);
   /// Per landmark, the clutter expected in its individual gate (ExpectedFalseInGate).
   std::vector<double> ExpectedClutterInGates() const;
+  double ExpectedConfirmedDetections() const;
+  int PairedConfirmedLandmarks(const std::vector<int>& target) const;
+  std::vector<int> RecoverHeading(const std::vector<Eigen::Vector2d>& z, const AssociationGates& gates,
+                                  std::vector<int> target, double t_s);
   bool ReadyToConfirm(const LandmarkTrack& t) const;
   /// existence=sprt: log prior odds that a new landmark is real (births against clutter_per_scan).
   double NewLandmarkPriorLogRatio() const;

@@ -4,10 +4,8 @@
 #include <iterator>
 
 #include "core/odometry_model.hpp"
-#include "core/chi_square.hpp"
 #include "slam/leftover_association.hpp"
 #include "slam/range_bearing.hpp"
-#include "slam/smoother_merges.hpp"
 
 namespace slambox {
 
@@ -49,6 +47,8 @@ void GraphSlam::Start(const StreamHeader& header) {
   samples_.clear();
   solved_landmarks_.clear();
   merged_into_.clear();
+  rejected_merges_.clear();
+  rejected_merge_count_ = 0;
   footprint_ = {sensor.range_max_m, 0.5 * sensor.fov_deg * M_PI / 180.0};
   split_ = {};
   dropped_.clear();
@@ -186,63 +186,6 @@ LandmarkGraphSolution GraphSlam::Solve(bool with_covariance, bool joint_landmark
   return s;
 }
 
-namespace {
-/// The graph's landmarks stacked in key order (no covariance).
-JointLandmarks Stacked(const std::map<int, Eigen::Vector2d>& landmarks) {
-  JointLandmarks joint;
-  joint.mean.resize(2 * static_cast<long>(landmarks.size()));
-  for (const auto& [key, m] : landmarks) {
-    joint.mean.segment<2>(2 * static_cast<long>(joint.keys.size())) = m;
-    joint.keys.push_back(key);
-  }
-  return joint;
-}
-}  // namespace
-
-MergeSearchSettings GraphSlam::AmbiguityTest() const {
-  const double p = config_.frontend.merge_probability;
-  return {ChiSquareQuantile(p, 2), 1.0 - p, MapDensity(Stacked(graph_.landmarks).mean)};
-}
-
-bool GraphSlam::MergesInSmoother() const {
-  const double p = config_.frontend.merge_probability;
-  return !known_ids_ && config_.smoother_merges && config_.compute_covariance && p > 0 && p < 1;
-}
-
-int GraphSlam::MergeInSmoother(LandmarkGraphSolution& s) {
-  int merges = 0;
-  // Each round merges at least one pair, so this ends within the number of landmarks.
-  for (;; s = Solve(false, true)) {
-    if (!s.covariance_ok || s.landmark_joint_covariance.size() == 0) break;
-    JointLandmarks joint = Stacked(graph_.landmarks);
-    joint.covariance = s.landmark_joint_covariance;
-    // Landmarks observed at one keyframe are distinct.
-    std::set<std::pair<int, int>> together;
-    for (size_t i = 0; i < graph_.observations.size();) {
-      size_t end = i;
-      while (end < graph_.observations.size() && graph_.observations[end].keyframe == graph_.observations[i].keyframe) ++end;
-      for (size_t u = i; u < end; ++u)
-        for (size_t v = u + 1; v < end; ++v)
-          together.insert(std::minmax(graph_.observations[u].landmark, graph_.observations[v].landmark));
-      i = end;
-    }
-    const MergeSearchSettings round = AmbiguityTest();
-    std::vector<std::pair<int, int>> pairs = FindJointMerges(joint, together, round);
-    if (pairs.empty()) {
-      // Nothing left to decide jointly: the front end's pairings the smoother confirms.
-      std::set<std::pair<int, int>> proposals;
-      for (const auto& [original, segments] : split_.segments)
-        for (const LandmarkSegment& segment : segments) proposals.insert({GraphKey(segment.key), GraphKey(original)});
-      pairs = UnchallengedPairings(joint, together, {proposals.begin(), proposals.end()}, round.gate_chi2,
-                                   std::max(round.gate_chi2, config_.frontend.gate_new_chi2));
-    }
-    if (pairs.empty()) break;
-    for (const auto& [keep, remove] : pairs) merged_into_[remove] = keep;
-    merges += static_cast<int>(pairs.size());
-  }
-  return merges;
-}
-
 std::map<std::pair<int, int>, int> GraphSlam::JoinLeftovers(const LandmarkGraphSolution& s, const Estimate& front) {
   std::vector<LeftoverDetection> detections;
   std::vector<std::pair<int, int>> where;  // (scan, detection index) of each
@@ -318,6 +261,7 @@ Estimate GraphSlam::Finish() {
   d["num_keyframes"].emplace_back(t_end, static_cast<double>(graph_.poses.size()));
   d["skipped_scans"].emplace_back(t_end, skipped_scans_);
   d["smoother_merges"].emplace_back(t_end, merges);
+  if (MergesInSmoother()) d["smoother_merges_refused"].emplace_back(t_end, rejected_merge_count_);
   if (MergesInSmoother()) {
     d["smoother_merges_skipped"].emplace_back(t_end, skipped ? 1.0 : 0.0);
     d["smoother_leftovers_joined"].emplace_back(t_end, static_cast<double>(joined_leftovers.size()));

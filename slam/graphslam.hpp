@@ -66,6 +66,7 @@ class GraphSlam : public SlamModule {
   /// Merges duplicates jointly (slam/smoother_merges.hpp) and re-solves until none is left
   /// (`s`: a solution with the joint landmark covariance, then the last); returns the merges.
   int MergeInSmoother(LandmarkGraphSolution& s);
+  int MergeIfTheGraphAgrees(const std::vector<std::pair<int, int>>& proposed, LandmarkGraphSolution& s);
   /// Detections of used scans the graph does not use (front end's -1 or a landmark not in the
   /// graph) that join a landmark of the solution `s` (slam/leftover_association.hpp): added to
   /// the graph; returned as (scan, detection index) -> landmark key.
@@ -85,6 +86,8 @@ class GraphSlam : public SlamModule {
   std::vector<OdometrySample> samples_;
   std::map<int, Eigen::Vector2d> solved_landmarks_;  ///< from the last periodic solve
   std::map<int, int> merged_into_;  ///< smoother merges: removed key -> kept key
+  std::set<std::pair<int, int>> rejected_merges_;  ///< (smaller, larger key): merges the re-solved graph refused
+  int rejected_merge_count_ = 0;
   SensorFootprint footprint_;
   ReobservationSplit split_;         ///< landmarks split where re-observed after leaving view (Finish)
   std::set<int> dropped_;            ///< split-off segments seen once and merged with nothing: not output

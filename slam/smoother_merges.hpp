@@ -55,6 +55,11 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& landmarks
                                                  const std::set<std::pair<int, int>>& seen_together,
                                                  const MergeSearchSettings& settings);
 
+/// D^T C^-1 D of the stacked differences D = (m_keep - m_remove, ..) of `pairs` (keys), C
+/// their joint covariance: what merging them all raises the graph's chi2 by in the
+/// linearized model (conditioning on D = 0). Infinity if C is not positive definite.
+double PairsDifferenceChi2(const JointLandmarks& landmarks, const std::vector<std::pair<int, int>>& pairs);
+
 /// The front end's own pairings that the smoother leaves standing: of `proposals` (a split-off
 /// segment's key, the key of the landmark the front end paired it with; see
 /// slam/reobservation_split.hpp), those whose difference d^2 is below `keep_chi2` while

@@ -35,6 +35,31 @@ JointLandmarks Pair(double d, double s2) {
   return L;
 }
 
+TEST(PairsDifferenceChi2, OnePairIsItsMahalanobisDistanceAndTwoPairsShareTheirCorrelation) {
+  // One pair, independent sigma^2 = 0.01 each: d^2 = |b - a|^2 / 0.02.
+  EXPECT_NEAR(PairsDifferenceChi2(Pair(0.3, 0.01), {{1, 2}}), 0.09 / 0.02, 1e-12);
+  // Keys 1..4: a = (0, 0), b = (0.2, 0), c = (5, 0), e = (5, 0.1), sigma^2 = 0.01 each, and
+  // b and e (the two removed) correlated 0.008 in x and y: D = (-0.2, 0, 0, -0.1), its
+  // covariance [0.02 I, 0.008 I; 0.008 I, 0.02 I]. By hand, per axis the 2 x 2 block
+  // [0.02 0.008; 0.008 0.02] has inverse [0.02 -0.008; -0.008 0.02] / 3.36e-4:
+  // x: (-0.2)^2 0.02 / 3.36e-4; y: (-0.1)^2 0.02 / 3.36e-4.
+  JointLandmarks L;
+  L.keys = {1, 2, 3, 4};
+  L.mean = (Eigen::VectorXd(8) << 0, 0, 0.2, 0, 5, 0, 5, 0.1).finished();
+  L.covariance = 0.01 * Eigen::MatrixXd::Identity(8, 8);
+  L.covariance.block<2, 2>(2, 6) = L.covariance.block<2, 2>(6, 2) = 0.008 * Eigen::Matrix2d::Identity();
+  const double by_hand = (0.04 * 0.02 + 0.01 * 0.02) / 3.36e-4;
+  EXPECT_NEAR(PairsDifferenceChi2(L, {{1, 2}, {3, 4}}), by_hand, 1e-9);
+  // Each alone ignores the other's correlation: 0.04 / 0.02 and 0.01 / 0.02, summing to less.
+  EXPECT_NEAR(PairsDifferenceChi2(L, {{1, 2}}) + PairsDifferenceChi2(L, {{3, 4}}), 2.5, 1e-9);
+  // Perfectly correlated landmarks: their difference has no covariance.
+  JointLandmarks same = Pair(0.3, 0.01);
+  same.covariance.setConstant(0.0);
+  same.covariance.diagonal().setConstant(0.01);
+  same.covariance.block<2, 2>(0, 2) = same.covariance.block<2, 2>(2, 0) = 0.01 * Eigen::Matrix2d::Identity();
+  EXPECT_TRUE(std::isinf(PairsDifferenceChi2(same, {{1, 2}})));
+}
+
 TEST(FindJointMerges, OnePairAtTheGateAndAtTheFakeThreshold) {
   const double s2 = 0.01;  // sigma 0.1 m each: C = 0.02 I
   const double density = 0.5 * kFake / (M_PI * kGate * 2 * s2);  // mu = 0.005
