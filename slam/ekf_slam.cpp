@@ -178,9 +178,10 @@ std::vector<int> EkfSlam::ProcessLandmarks(const LandmarkEvent& event) {
   std::vector<int> target;
   if (known_ids_) target = AssociateKnownIds(obs);
   else if (config_.association == EkfAssociation::kNearestNeighbour) target = AssociateNearestNeighbour(state_, z, R_, gates).landmark;
-  else target = AssociateJcbb(state_, z, R_, gates).landmark;
-  if (!known_ids_ && config_.association != EkfAssociation::kNearestNeighbour && config_.recover_heading)
-    target = RecoverHeading(z, gates, std::move(target), event.t_s);
+  else {
+    target = AssociateJcbb(state_, z, R_, gates).landmark;
+    if (config_.recover_heading) target = RecoverHeading(z, gates, std::move(target), event.t_s);
+  }
   const std::vector<bool> held = HoldPairings(z, target);
   if (blocks_closures_) BlockUncertainClosures(z, target);
   const bool testing = !closure_rival_.empty();

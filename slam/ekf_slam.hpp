@@ -25,6 +25,7 @@
 // (slam/scan_likelihood.hpp) keeps one (closure_test, slam/ekf_slam_closure.cpp). Optional
 // FEJ-EKF (Huang, Mourikis & Roumeliotis 2008).
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <string>
@@ -138,6 +139,10 @@ class EkfSlam : public SlamModule {
                        double t_s);
   /// Per landmark, the clutter expected in its individual gate (ExpectedFalseInGate).
   std::vector<double> ExpectedClutterInGates() const;
+  /// A landmark predicted at zp = (range, bearing) is expected in view (visibility_margin_m inside range_max).
+  bool ExpectedInView(const Eigen::Vector2d& zp) const {
+    return zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
+  }
   double ExpectedConfirmedDetections() const;
   int PairedConfirmedLandmarks(const std::vector<int>& target) const;
   std::vector<int> RecoverHeading(const std::vector<Eigen::Vector2d>& z, const AssociationGates& gates,

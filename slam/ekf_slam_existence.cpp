@@ -56,7 +56,7 @@ void EkfSlam::ManageExistence(const std::vector<bool>& matched, const std::vecto
     const bool tentative_sprt = config_.tentative_existence == ExistenceRule::kSequentialTest;
     if (!tentative_sprt && seen) t.confirmed = t.confirmed || ReadyToConfirm(t);
     const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
-    const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
+    const bool in_view = ExpectedInView(zp);
     // Not confirmed in time: with counts at any place, with the sequential test only out
     // of view, where no trial can decide it (nor should it stay where a later real
     // observation could be paired with it).

@@ -16,8 +16,8 @@
 // that pairs detections with two or more confirmed landmarks is kept, and with it the wider
 // heading variance (the update then shrinks it by what the scan shows). If none does, the
 // scan's association stands as it was.
+#include <algorithm>
 #include <cmath>
-#include <set>
 
 #include "slam/ekf_slam.hpp"
 #include "slam/range_bearing.hpp"
@@ -30,17 +30,14 @@ double EkfSlam::ExpectedConfirmedDetections() const {
   for (size_t j = 0; j < tracks_.size(); ++j) {
     if (!tracks_[j].confirmed) continue;
     const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(static_cast<int>(j))).z;
-    const bool in_view = zp.x() < range_max_m_ - config_.visibility_margin_m && std::abs(zp.y()) < half_fov_rad_;
-    if (in_view) lambda += config_.estimate_detection_rate ? DetectionProbability(detection_, zp.x()) : 1.0;
+    if (ExpectedInView(zp)) lambda += config_.estimate_detection_rate ? DetectionProbability(detection_, zp.x()) : 1.0;
   }
   return lambda;
 }
 
 int EkfSlam::PairedConfirmedLandmarks(const std::vector<int>& target) const {
-  std::set<int> paired;
-  for (int j : target)
-    if (j >= 0 && tracks_[j].confirmed) paired.insert(j);
-  return static_cast<int>(paired.size());
+  // JCBB pairs each landmark at most once.
+  return static_cast<int>(std::count_if(target.begin(), target.end(), [&](int j) { return j >= 0 && tracks_[j].confirmed; }));
 }
 
 std::vector<int> EkfSlam::RecoverHeading(const std::vector<Eigen::Vector2d>& z, const AssociationGates& gates,

@@ -48,7 +48,6 @@ void GraphSlam::Start(const StreamHeader& header) {
   solved_landmarks_.clear();
   merged_into_.clear();
   rejected_merges_.clear();
-  rejected_merge_count_ = 0;
   footprint_ = {sensor.range_max_m, 0.5 * sensor.fov_deg * M_PI / 180.0};
   split_ = {};
   dropped_.clear();
@@ -261,8 +260,8 @@ Estimate GraphSlam::Finish() {
   d["num_keyframes"].emplace_back(t_end, static_cast<double>(graph_.poses.size()));
   d["skipped_scans"].emplace_back(t_end, skipped_scans_);
   d["smoother_merges"].emplace_back(t_end, merges);
-  if (MergesInSmoother()) d["smoother_merges_refused"].emplace_back(t_end, rejected_merge_count_);
   if (MergesInSmoother()) {
+    d["smoother_merges_refused"].emplace_back(t_end, static_cast<double>(rejected_merges_.size()));
     d["smoother_merges_skipped"].emplace_back(t_end, skipped ? 1.0 : 0.0);
     d["smoother_leftovers_joined"].emplace_back(t_end, static_cast<double>(joined_leftovers.size()));
   }

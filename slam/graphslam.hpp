@@ -87,7 +87,6 @@ class GraphSlam : public SlamModule {
   std::map<int, Eigen::Vector2d> solved_landmarks_;  ///< from the last periodic solve
   std::map<int, int> merged_into_;  ///< smoother merges: removed key -> kept key
   std::set<std::pair<int, int>> rejected_merges_;  ///< (smaller, larger key): merges the re-solved graph refused
-  int rejected_merge_count_ = 0;
   SensorFootprint footprint_;
   ReobservationSplit split_;         ///< landmarks split where re-observed after leaving view (Finish)
   std::set<int> dropped_;            ///< split-off segments seen once and merged with nothing: not output

@@ -98,8 +98,7 @@ int GraphSlam::MergeIfTheGraphAgrees(const std::vector<std::pair<int, int>>& pro
   graph_ = graph_before;
   solved_landmarks_ = landmarks_before;
   if (pairs.size() == 1) {
-    rejected_merges_.insert(std::minmax(pairs[0].first, pairs[0].second));
-    ++rejected_merge_count_;
+    rejected_merges_.insert(pairs[0]);  // (smaller, larger) already
     return 0;
   }
   const auto middle = pairs.begin() + static_cast<long>(pairs.size() / 2);

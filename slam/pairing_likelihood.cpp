@@ -7,23 +7,30 @@
 
 namespace slambox {
 
+PairDifferences StackPairDifferences(const Eigen::VectorXd& x, const Eigen::MatrixXd& P,
+                                     const std::vector<std::pair<int, int>>& pairs) {
+  const int k = static_cast<int>(pairs.size());
+  PairDifferences d{Eigen::VectorXd(2 * k), Eigen::MatrixXd(2 * k, 2 * k)};
+  const auto block = [&](int u, int v) { return P.block<2, 2>(2 * u, 2 * v); };
+  for (int i = 0; i < k; ++i) {
+    const auto [ai, bi] = pairs[i];
+    d.D.segment<2>(2 * i) = x.segment<2>(2 * ai) - x.segment<2>(2 * bi);
+    for (int j = 0; j < k; ++j) {
+      const auto [aj, bj] = pairs[j];
+      d.C.block<2, 2>(2 * i, 2 * j) = block(ai, aj) - block(ai, bj) - block(bi, aj) + block(bi, bj);
+    }
+  }
+  d.C = (0.5 * (d.C + d.C.transpose())).eval();
+  return d;
+}
+
 PairingLikelihood EvaluatePairing(const Eigen::VectorXd& x, const Eigen::MatrixXd& P,
                                   const std::vector<std::pair<int, int>>& pairs, double gate_chi2,
                                   double density_per_m2) {
   const int k = static_cast<int>(pairs.size());
   PairingLikelihood r;
-  Eigen::VectorXd D(2 * k);
-  Eigen::MatrixXd C(2 * k, 2 * k);  // H P H^T, H = [.. I .. -I ..] per pair
-  const auto block = [&](int u, int v) { return P.block<2, 2>(2 * u, 2 * v); };
-  for (int i = 0; i < k; ++i) {
-    const auto [ai, bi] = pairs[i];
-    D.segment<2>(2 * i) = x.segment<2>(2 * ai) - x.segment<2>(2 * bi);
-    for (int j = 0; j < k; ++j) {
-      const auto [aj, bj] = pairs[j];
-      C.block<2, 2>(2 * i, 2 * j) = block(ai, aj) - block(ai, bj) - block(bi, aj) + block(bi, bj);
-    }
-  }
-  const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (C + C.transpose()));
+  const auto [D, C] = StackPairDifferences(x, P, pairs);
+  const Eigen::LLT<Eigen::MatrixXd> llt(C);
   if (llt.info() != Eigen::Success) return r;
   r.valid = true;
   const double log_two_pi_density = std::log(2.0 * M_PI * density_per_m2);

@@ -28,6 +28,16 @@ struct PairingLikelihood {
   std::vector<double> log_expected_in_gate;  ///< per pair: log mu_i given the pairs before it (in order)
 };
 
+/// The stacked differences D = (x_a1 - x_b1, ..) of `pairs` (indices of points stacked in
+/// (x, P), 2 rows each) and their covariance C = H P H^T, H = [.. I .. -I ..] per pair
+/// (symmetrized).
+struct PairDifferences {
+  Eigen::VectorXd D;
+  Eigen::MatrixXd C;
+};
+PairDifferences StackPairDifferences(const Eigen::VectorXd& x, const Eigen::MatrixXd& P,
+                                     const std::vector<std::pair<int, int>>& pairs);
+
 /// Lambda of `pairs` (indices of points stacked in (x, P), 2 rows each), in their order.
 PairingLikelihood EvaluatePairing(const Eigen::VectorXd& x, const Eigen::MatrixXd& P,
                                   const std::vector<std::pair<int, int>>& pairs, double gate_chi2,

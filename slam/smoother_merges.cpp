@@ -191,18 +191,14 @@ std::vector<std::pair<int, int>> UnchallengedPairings(const JointLandmarks& L,
 }
 
 double PairsDifferenceChi2(const JointLandmarks& landmarks, const std::vector<std::pair<int, int>>& pairs) {
-  std::map<int, Eigen::Index> index;
-  for (size_t i = 0; i < landmarks.keys.size(); ++i) index[landmarks.keys[i]] = 2 * static_cast<Eigen::Index>(i);
-  const auto k = static_cast<Eigen::Index>(pairs.size());
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(2 * k, landmarks.mean.size());  // D = S x
-  for (Eigen::Index p = 0; p < k; ++p) {
-    S.block<2, 2>(2 * p, index.at(pairs[p].first)) = Eigen::Matrix2d::Identity();
-    S.block<2, 2>(2 * p, index.at(pairs[p].second)) -= Eigen::Matrix2d::Identity();
-  }
-  const Eigen::VectorXd D = S * landmarks.mean;
-  const Eigen::LLT<Eigen::MatrixXd> C((S * landmarks.covariance * S.transpose()).eval());
-  if (C.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-  return D.dot(C.solve(D));
+  std::map<int, int> index;
+  for (size_t i = 0; i < landmarks.keys.size(); ++i) index[landmarks.keys[i]] = static_cast<int>(i);
+  std::vector<std::pair<int, int>> indices;
+  for (const auto& [a, b] : pairs) indices.emplace_back(index.at(a), index.at(b));
+  const auto [D, C] = StackPairDifferences(landmarks.mean, landmarks.covariance, indices);
+  const Eigen::LLT<Eigen::MatrixXd> llt(C);
+  if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+  return D.dot(llt.solve(D));
 }
 
 }  // namespace slambox
