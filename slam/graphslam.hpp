@@ -31,7 +31,7 @@ struct GraphSlamConfig {
   int keyframe_every_odometry = 0;  ///< [steps] a scan makes a keyframe after this much odometry (0 = off; default: every scan)
   double keyframe_distance_m = 0.0; ///< [m] ... or after this much travel (0 = off); both off: every scan
   int solve_every_keyframes = 0;    ///< [keyframes] also solve during the run (0 = only at the end)
-  int max_iterations = 50;          ///< [-] Ceres iterations per solve
+  int max_iterations = LandmarkGraphOptions{}.max_iterations;  ///< [-] Ceres iterations per solve
   bool compute_covariance = true;   ///< marginal covariances of poses and landmarks (slam/sparse_marginals.hpp)
   double huber_scale = 0.0;         ///< [sigma] Huber loss on range-bearing residuals (0 = none)
   bool smoother_merges = true;      ///< unknown ids: merge duplicate landmarks jointly under the smoother's marginals (slam/smoother_merges.hpp)
