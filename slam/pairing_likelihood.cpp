@@ -11,14 +11,9 @@ PairDifferences StackPairDifferences(const Eigen::VectorXd& x, const Eigen::Matr
                                      const std::vector<std::pair<int, int>>& pairs) {
   const int k = static_cast<int>(pairs.size());
   PairDifferences d{Eigen::VectorXd(2 * k), Eigen::MatrixXd(2 * k, 2 * k)};
-  const auto block = [&](int u, int v) { return P.block<2, 2>(2 * u, 2 * v); };
   for (int i = 0; i < k; ++i) {
-    const auto [ai, bi] = pairs[i];
-    d.D.segment<2>(2 * i) = x.segment<2>(2 * ai) - x.segment<2>(2 * bi);
-    for (int j = 0; j < k; ++j) {
-      const auto [aj, bj] = pairs[j];
-      d.C.block<2, 2>(2 * i, 2 * j) = block(ai, aj) - block(ai, bj) - block(bi, aj) + block(bi, bj);
-    }
+    d.D.segment<2>(2 * i) = x.segment<2>(2 * pairs[i].first) - x.segment<2>(2 * pairs[i].second);
+    for (int j = 0; j < k; ++j) d.C.block<2, 2>(2 * i, 2 * j) = PairCrossCovariance(P, pairs[i], pairs[j]);
   }
   d.C = (0.5 * (d.C + d.C.transpose())).eval();
   return d;

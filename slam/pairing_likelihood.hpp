@@ -28,6 +28,13 @@ struct PairingLikelihood {
   std::vector<double> log_expected_in_gate;  ///< per pair: log mu_i given the pairs before it (in order)
 };
 
+/// Cross-covariance of two pairs' differences x_a - x_b (indices of points stacked in P, 2
+/// rows each): H_u P H_v^T with H_u = [.. I .. -I ..].
+inline Eigen::Matrix2d PairCrossCovariance(const Eigen::MatrixXd& P, std::pair<int, int> u, std::pair<int, int> v) {
+  return P.block<2, 2>(2 * u.first, 2 * v.first) - P.block<2, 2>(2 * u.first, 2 * v.second) -
+         P.block<2, 2>(2 * u.second, 2 * v.first) + P.block<2, 2>(2 * u.second, 2 * v.second);
+}
+
 /// The stacked differences D = (x_a1 - x_b1, ..) of `pairs` (indices of points stacked in
 /// (x, P), 2 rows each) and their covariance C = H P H^T, H = [.. I .. -I ..] per pair
 /// (symmetrized).

@@ -30,12 +30,6 @@ double ExpectedOthersInGate(const Eigen::Matrix2d& C, const MergeSearchSettings&
   return ExpectedInGate(C, s.gate_chi2, s.density_per_m2);
 }
 
-/// Cross-covariance of two pairs' differences, H_u P H_v^T with H_u = [.. I .. -I ..].
-Eigen::Matrix2d DifferenceCrossCovariance(const Eigen::MatrixXd& P, const Candidate& u, const Candidate& v) {
-  return P.block<2, 2>(2 * u.a, 2 * v.a) - P.block<2, 2>(2 * u.a, 2 * v.b) - P.block<2, 2>(2 * u.b, 2 * v.a) +
-         P.block<2, 2>(2 * u.b, 2 * v.b);
-}
-
 /// Grows a hypothesis from `seed` (see the header): its pairs (involved indices), in order.
 /// Conditioning on the taken pairs (stacked difference operator H_T) without touching P:
 /// with L L^T = H_T P H_T^T (block Cholesky, grown one pair at a time), a candidate c's
@@ -64,12 +58,12 @@ std::vector<std::pair<int, int>> Grow(const std::vector<Candidate>& candidates, 
     if (llt.info() != Eigen::Success) break;  // a candidate's d^2 is finite: C was positive definite
     const Eigen::Matrix2d L_kk = llt.matrixL();
     const Eigen::Vector2d v_k = L_kk.triangularView<Eigen::Lower>().solve(D[next]);
-    const std::vector<Eigen::Matrix2d> W_next = W[next];
+    const std::vector<Eigen::Matrix2d>& W_next = W[next];  // next is used now: not appended to below
     next = -1;
     double best = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < n; ++k) {
       if (used[candidates[k].a] || used[candidates[k].b]) continue;
-      Eigen::Matrix2d g = DifferenceCrossCovariance(P, c, candidates[k]);
+      Eigen::Matrix2d g = PairCrossCovariance(P, {c.a, c.b}, {candidates[k].a, candidates[k].b});
       for (size_t j = 0; j < W_next.size(); ++j) g.noalias() -= W_next[j].transpose() * W[k][j];
       const Eigen::Matrix2d w = L_kk.triangularView<Eigen::Lower>().solve(g);
       W[k].push_back(w);
