@@ -27,7 +27,7 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
          "landmark) joins the one landmark of the smoothed map in its gate (gate_accept_chi2), if that gate expects fewer "
          "clutter or unmapped landmarks than its miss probability");
   b.Bind("smoother_merges_max_landmarks", c.smoother_merges_max_landmarks, "-",
-         "above this many landmarks after the split, the joint search (cost ~ candidates x landmarks^3) is skipped and "
+         "above this many landmarks after the split, the joint search (cost ~ candidates^2 x pairs) is skipped and "
          "the front end's association kept", AtLeast(0));
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
 }

@@ -36,7 +36,7 @@ struct GraphSlamConfig {
   double huber_scale = 0.0;         ///< [sigma] Huber loss on range-bearing residuals (0 = none)
   bool smoother_merges = true;      ///< unknown ids: merge duplicate landmarks jointly under the smoother's marginals (slam/smoother_merges.hpp)
   bool smoother_leftovers = true;   ///< unknown ids, after the smoother merges: detections the front end left out join the one landmark the smoothed map puts in their gate (slam/leftover_association.hpp)
-  int smoother_merges_max_landmarks = 300;  ///< [-] above this many landmarks after the split, keep the front end's association (the search costs ~ candidates x landmarks^3)
+  int smoother_merges_max_landmarks = 300;  ///< [-] above this many landmarks after the split, keep the front end's association (the search grows a hypothesis from every candidate pair: ~ candidates^2 x pairs)
   EkfSlamConfig frontend;           ///< association and tentative-landmark settings (same names as ekf-slam)
 };
 void BindParams(GraphSlamConfig& c, ParamBinder& b);

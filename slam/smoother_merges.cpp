@@ -34,46 +34,59 @@ double ExpectedOthersInGate(const Eigen::Matrix2d& C, const MergeSearchSettings&
 /// Conditioning on the taken pairs (stacked difference operator H_T) without touching P:
 /// with L L^T = H_T P H_T^T (block Cholesky, grown one pair at a time), a candidate c's
 /// difference is N(D_c - W_c^T v, C_c - W_c^T W_c), W_c = L^-1 H_T P H_c^T, v = L^-1 H_T x —
-/// the same Gaussian as ConditionOnEqual applied to (x, P) pair by pair, at O(k) per
-/// candidate and taken pair instead of O(n^2) per taken pair.
-std::vector<std::pair<int, int>> Grow(const std::vector<Candidate>& candidates, int seed, const Eigen::VectorXd& x,
-                                      const Eigen::MatrixXd& P, const MergeSearchSettings& s) {
-  const size_t n = candidates.size();
-  std::vector<Eigen::Matrix2d> C(n);  // conditioned difference covariances
-  std::vector<Eigen::Vector2d> D(n);  // conditioned differences
-  std::vector<std::vector<Eigen::Matrix2d>> W(n);  // W_c, one 2 x 2 block per taken pair
-  for (size_t k = 0; k < n; ++k) {
-    const PointDifference d = Difference(x, P, candidates[k].a, candidates[k].b);
-    C[k] = d.C, D[k] = d.D;
-  }
+/// the same Gaussian as ConditionOnEqual applied to (x, P) pair by pair. W_c is linear in
+/// H_c, so it is kept per landmark, not per candidate: U = (L^-1 H_T P)^T, one 2-row block
+/// per landmark and one 2-column block per taken pair, and W_c = U_a - U_b for c = (a, b).
+/// Taking pair (a, b) as the t-th adds the block column (P H_ab^T - U_{0..t-1} W_ab) L_tt^-T,
+/// O(t m) for all m landmarks, and each candidate's C and D then change by its 2 x 2 block
+/// of that column: O(1) per candidate and taken pair. `U` is workspace of 2m rows and at
+/// least 2 * (m / 2) columns; columns beyond the taken pairs are never read.
+std::vector<std::pair<int, int>> Grow(const std::vector<Candidate>& candidates,
+                                      const std::vector<PointDifference>& initial, int seed, const Eigen::MatrixXd& P,
+                                      const MergeSearchSettings& s, Eigen::MatrixXd& U) {
+  std::vector<Eigen::Matrix2d> C(candidates.size());  // conditioned difference covariances
+  std::vector<Eigen::Vector2d> D(candidates.size());  // conditioned differences
+  std::vector<int> live;                               // candidates with both landmarks free, in order
+  for (size_t k = 0; k < candidates.size(); ++k)
+    C[k] = initial[k].C, D[k] = initial[k].D, live.push_back(static_cast<int>(k));
   std::vector<std::pair<int, int>> taken;
-  std::vector<bool> used(x.size() / 2, false);
   int next = seed;
   while (next >= 0) {
-    const Candidate& c = candidates[next];
+    const Candidate c = candidates[next];
+    const Eigen::Index t = static_cast<Eigen::Index>(taken.size());  // block column of this pair
     taken.emplace_back(c.a, c.b);
-    used[c.a] = used[c.b] = true;
-    // The new pair's block of L: L_kk = chol(C_next | taken), its row W_next^T.
+    const auto touches = [&](int k) {
+      const Candidate& o = candidates[k];
+      return o.a == c.a || o.a == c.b || o.b == c.a || o.b == c.b;
+    };
+    live.erase(std::remove_if(live.begin(), live.end(), touches), live.end());
+    // The new pair's block of L: L_tt = chol(C_next | taken), and its column of U.
     const Eigen::LLT<Eigen::Matrix2d> llt(0.5 * (C[next] + C[next].transpose()));
     if (llt.info() != Eigen::Success) break;  // a candidate's d^2 is finite: C was positive definite
-    const Eigen::Matrix2d L_kk = llt.matrixL();
-    const Eigen::Vector2d v_k = L_kk.triangularView<Eigen::Lower>().solve(D[next]);
-    const std::vector<Eigen::Matrix2d>& W_next = W[next];  // next is used now: not appended to below
+    const Eigen::Matrix2d L_tt = llt.matrixL();
+    const Eigen::Vector2d v_t = L_tt.triangularView<Eigen::Lower>().solve(D[next]);
+    auto column = U.middleCols<2>(2 * t);
+    column = P.middleCols<2>(2 * c.a) - P.middleCols<2>(2 * c.b);
+    if (t > 0) {
+      const Eigen::MatrixXd W_ab = U.block(2 * c.a, 0, 2, 2 * t) - U.block(2 * c.b, 0, 2, 2 * t);  // W_ab^T
+      column.col(0).noalias() -= U.leftCols(2 * t) * W_ab.row(0).transpose();
+      column.col(1).noalias() -= U.leftCols(2 * t) * W_ab.row(1).transpose();
+    }
+    column = column * L_tt.transpose().triangularView<Eigen::Upper>().solve(Eigen::Matrix2d::Identity());
     next = -1;
     double best = std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < n; ++k) {
-      if (used[candidates[k].a] || used[candidates[k].b]) continue;
-      Eigen::Matrix2d g = PairCrossCovariance(P, {c.a, c.b}, {candidates[k].a, candidates[k].b});
-      for (size_t j = 0; j < W_next.size(); ++j) g.noalias() -= W_next[j].transpose() * W[k][j];
-      const Eigen::Matrix2d w = L_kk.triangularView<Eigen::Lower>().solve(g);
-      W[k].push_back(w);
-      C[k].noalias() -= w.transpose() * w;
-      D[k].noalias() -= w.transpose() * v_k;
-      const Eigen::Matrix2d Ck = 0.5 * (C[k] + C[k].transpose());
-      const Eigen::LLT<Eigen::Matrix2d> q(Ck);
-      const double d2 = q.info() == Eigen::Success ? D[k].dot(q.solve(D[k])) : std::numeric_limits<double>::infinity();
-      const double area = Ck.determinant();
-      if (d2 < s.gate_chi2 && area < best) best = area, next = static_cast<int>(k);
+    for (const int k : live) {
+      const Candidate& o = candidates[k];
+      const Eigen::Matrix2d w = U.block<2, 2>(2 * o.a, 2 * t) - U.block<2, 2>(2 * o.b, 2 * t);  // W_k^T
+      C[k].noalias() -= w * w.transpose();
+      D[k].noalias() -= w * v_t;
+      // d^2 = D^T C^-1 D by the 2 x 2 adjugate; C positive definite iff C_00 > 0 and det C > 0.
+      const double c00 = C[k](0, 0), c11 = C[k](1, 1), c01 = 0.5 * (C[k](0, 1) + C[k](1, 0));
+      const double area = c00 * c11 - c01 * c01;  // det C: the gate's area up to pi gate
+      if (!(c00 > 0.0 && area > 0.0) || area >= best) continue;
+      const Eigen::Vector2d& d = D[k];
+      const double d2 = (c11 * d.x() * d.x() - 2.0 * c01 * d.x() * d.y() + c00 * d.y() * d.y()) / area;
+      if (d2 < s.gate_chi2) best = area, next = k;
     }
   }
   return taken;
@@ -166,11 +179,16 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
   // Otherwise every candidate seeds a hypothesis, which keeps only the pairs it explains
   // better with than without (slam/pairing_likelihood.hpp); of those below the threshold,
   // the largest wins (ties: the more likely; with k equal the density's share cancels).
+  std::vector<PointDifference> initial;
+  for (const Candidate& c : candidates) initial.push_back(Difference(x, P, c.a, c.b));
+  Eigen::MatrixXd U(2 * m, 2 * (m / 2));  // Grow's workspace
   std::vector<std::pair<int, int>> best;
   double best_log_ratio = -std::numeric_limits<double>::infinity();
   for (const int seed : order) {
+    std::vector<std::pair<int, int>> grown = Grow(candidates, initial, seed, P, s, U);
+    if (grown.size() < best.size()) continue;  // dropping pairs cannot make it larger than the best
     const std::vector<std::pair<int, int>> kept =
-        DropUnexplainedPairs(x, P, Grow(candidates, seed, x, P, s), s.gate_chi2, s.density_per_m2);
+        DropUnexplainedPairs(x, P, std::move(grown), s.gate_chi2, s.density_per_m2);
     const PairingLikelihood l = EvaluatePairing(x, P, kept, s.gate_chi2, s.density_per_m2);
     double log_all_wrong = 0.0;  // log prod_i min(1, mu_i)
     for (const double log_mu : l.log_expected_in_gate) log_all_wrong += std::min(0.0, log_mu);
