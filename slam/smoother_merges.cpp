@@ -16,8 +16,8 @@ namespace slambox {
 namespace {
 
 struct Candidate {
-  int a = 0, b = 0;  ///< indices into the involved landmarks (a's key < b's key)
-  double d2 = 0.0;   ///< unconditional d^2 (seed order)
+  int a = 0, b = 0;              ///< indices into the involved landmarks (a's key < b's key)
+  PointDifference unconditional;  ///< m_a - m_b before any merge (its d^2 orders the seeds)
 };
 
 /// One pair's difference under the current (conditioned) Gaussian; landmark i at rows 2i.
@@ -41,14 +41,13 @@ double ExpectedOthersInGate(const Eigen::Matrix2d& C, const MergeSearchSettings&
 /// O(t m) for all m landmarks, and each candidate's C and D then change by its 2 x 2 block
 /// of that column: O(1) per candidate and taken pair. `U` is workspace of 2m rows and at
 /// least 2 * (m / 2) columns; columns beyond the taken pairs are never read.
-std::vector<std::pair<int, int>> Grow(const std::vector<Candidate>& candidates,
-                                      const std::vector<PointDifference>& initial, int seed, const Eigen::MatrixXd& P,
+std::vector<std::pair<int, int>> Grow(const std::vector<Candidate>& candidates, int seed, const Eigen::MatrixXd& P,
                                       const MergeSearchSettings& s, Eigen::MatrixXd& U) {
   std::vector<Eigen::Matrix2d> C(candidates.size());  // conditioned difference covariances
   std::vector<Eigen::Vector2d> D(candidates.size());  // conditioned differences
   std::vector<int> live;                               // candidates with both landmarks free, in order
   for (size_t k = 0; k < candidates.size(); ++k)
-    C[k] = initial[k].C, D[k] = initial[k].D, live.push_back(static_cast<int>(k));
+    C[k] = candidates[k].unconditional.C, D[k] = candidates[k].unconditional.D, live.push_back(static_cast<int>(k));
   std::vector<std::pair<int, int>> taken;
   int next = seed;
   while (next >= 0) {
@@ -127,13 +126,13 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
   const int n = static_cast<int>(L.keys.size());
   // Candidates: pairs never seen together whose unconditional d^2 is inside the gate.
   std::vector<std::pair<int, int>> pairs;  // landmark indices, smaller key first
-  std::vector<double> d2s;
+  std::vector<PointDifference> differences;
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j) {
       const auto [a, b] = L.keys[i] < L.keys[j] ? std::pair{i, j} : std::pair{j, i};
       if (seen_together.count({L.keys[a], L.keys[b]})) continue;
-      const double d2 = Difference(L.mean, L.covariance, a, b).d2;
-      if (d2 < s.gate_chi2) pairs.emplace_back(a, b), d2s.push_back(d2);
+      const PointDifference d = Difference(L.mean, L.covariance, a, b);
+      if (d.d2 < s.gate_chi2) pairs.emplace_back(a, b), differences.push_back(d);
     }
   if (pairs.empty()) return {};
   // Only the landmarks in some candidate take part: their marginal is the sub-block.
@@ -149,10 +148,12 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
     for (int c = 0; c < m; ++c) P.block<2, 2>(2 * r, 2 * c) = L.covariance.block<2, 2>(2 * involved[r], 2 * involved[c]);
   }
   std::vector<Candidate> candidates;
-  for (size_t k = 0; k < pairs.size(); ++k) candidates.push_back({local[pairs[k].first], local[pairs[k].second], d2s[k]});
+  for (size_t k = 0; k < pairs.size(); ++k)
+    candidates.push_back({local[pairs[k].first], local[pairs[k].second], differences[k]});
   std::vector<int> order(candidates.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
-  std::stable_sort(order.begin(), order.end(), [&](int u, int v) { return candidates[u].d2 < candidates[v].d2; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int u, int v) { return candidates[u].unconditional.d2 < candidates[v].unconditional.d2; });
 
   const auto to_merges = [&](const std::vector<std::pair<int, int>>& taken) {  // involved indices -> keys
     std::vector<std::pair<int, int>> merges;
@@ -170,8 +171,7 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
   for (const int k : order) {
     const Candidate& c = candidates[k];
     if (used[c.a] || used[c.b]) continue;
-    const PointDifference p = Difference(x, P, c.a, c.b);
-    if (std::log(ExpectedOthersInGate(p.C, s)) >= log_threshold) continue;
+    if (std::log(ExpectedOthersInGate(c.unconditional.C, s)) >= log_threshold) continue;
     confident.emplace_back(c.a, c.b);
     used[c.a] = used[c.b] = true;
   }
@@ -179,13 +179,11 @@ std::vector<std::pair<int, int>> FindJointMerges(const JointLandmarks& L,
   // Otherwise every candidate seeds a hypothesis, which keeps only the pairs it explains
   // better with than without (slam/pairing_likelihood.hpp); of those below the threshold,
   // the largest wins (ties: the more likely; with k equal the density's share cancels).
-  std::vector<PointDifference> initial;
-  for (const Candidate& c : candidates) initial.push_back(Difference(x, P, c.a, c.b));
   Eigen::MatrixXd U(2 * m, 2 * (m / 2));  // Grow's workspace
   std::vector<std::pair<int, int>> best;
   double best_log_ratio = -std::numeric_limits<double>::infinity();
   for (const int seed : order) {
-    std::vector<std::pair<int, int>> grown = Grow(candidates, initial, seed, P, s, U);
+    std::vector<std::pair<int, int>> grown = Grow(candidates, seed, P, s, U);
     if (grown.size() < best.size()) continue;  // dropping pairs cannot make it larger than the best
     const std::vector<std::pair<int, int>> kept =
         DropUnexplainedPairs(x, P, std::move(grown), s.gate_chi2, s.density_per_m2);
