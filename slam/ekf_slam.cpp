@@ -80,6 +80,10 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
          "searched again with the heading's standard deviation widened 2, 4, 8, 16 times, the first pairing two or "
          "more confirmed landmarks kept with that variance (slam/ekf_slam_recovery.cpp)");
   b.Bind("fej", c.fej, "-", "first-estimates Jacobians (FEJ-EKF, Huang et al. 2008)");
+  b.Bind("invariant", c.invariant, "-",
+         "right-invariant error (Invariant EKF, Barrau & Bonnabel 2015): each update's correction is a motion of "
+         "robot and map on SE_{1+n}(2) and the covariance follows it, so rotating or translating everything stays "
+         "unobservable (not with fej=true or update_iterations > 1: those linearize the standard error)");
   b.Bind("update_iterations", c.update_iterations, "-",
          "iterated EKF: Gauss-Newton steps of each scan's update, relinearized at the iterate (1 = plain EKF)", AtLeast(1));
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance", Above(0));
@@ -217,9 +221,9 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
     ++tracks_[j].sightings;
     ++tracks_[j].existence;
   }
-  const EkfUpdateResult update = config_.update_iterations > 1
-                                     ? IteratedUpdateState(state_, measured, R_, config_.update_iterations)
-                                     : UpdateState(state_, lin, R_);
+  const EkfUpdateResult update = config_.update_iterations > 1 ? IteratedUpdateState(state_, measured, R_, config_.update_iterations)
+                                 : config_.invariant && !config_.fej ? InvariantUpdateState(state_, lin, R_)
+                                                                  : UpdateState(state_, lin, R_);
   if (!update.applied && !lin.empty()) Record(event.t_s, "update_rejected", 1.0);
 
   int created = 0, discarded = 0;

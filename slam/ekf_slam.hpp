@@ -23,7 +23,7 @@
 // a fake) is tested on the scans that follow it: the filter forks into a branch with the
 // closure and one without, and Wald's test on their scan likelihoods
 // (slam/scan_likelihood.hpp) keeps one (closure_test, slam/ekf_slam_closure.cpp). Optional
-// FEJ-EKF (Huang, Mourikis & Roumeliotis 2008).
+// FEJ-EKF (Huang, Mourikis & Roumeliotis 2008) or Invariant EKF (Barrau & Bonnabel 2015).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -75,6 +75,7 @@ struct EkfSlamConfig {
   bool closure_test = true;             ///< unknown ids: a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
   bool recover_heading = true;         ///< unknown ids: re-associate a scan that contradicts the predicted heading under a wider heading prior (slam/ekf_slam_recovery.cpp)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
+  bool invariant = false;               ///< right-invariant error (Invariant EKF, Barrau & Bonnabel 2015; slam/ekf_slam_filter.hpp)
   int update_iterations = 1;            ///< [-] iterated EKF update: relinearizations per scan (1 = EKF; slam/ekf_slam_filter.hpp)
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance

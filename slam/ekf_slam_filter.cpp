@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "slam/range_bearing.hpp"
@@ -128,6 +129,39 @@ EkfUpdateResult UpdateState(EkfSlamState& s, const std::vector<LinearizedObserva
   s.mean(2) = NormalizeAngle(s.mean(2));
   JosephUpdate(s.covariance, g);
   return result;
+}
+
+EkfUpdateResult InvariantUpdateState(EkfSlamState& s, const std::vector<LinearizedObservation>& obs,
+                                     const Eigen::Matrix2d& R) {
+  const Eigen::VectorXd prior = s.mean;
+  const EkfUpdateResult result = UpdateState(s, obs, R);
+  if (result.applied) RetractInvariant(s, prior);
+  return result;
+}
+
+void RetractInvariant(EkfSlamState& s, const Eigen::VectorXd& prior) {
+  const double phi = NormalizeAngle(s.mean(2) - prior(2));  // xi_theta (= the heading's correction)
+  // exp on SE_{1+n}(2): R(phi) and V(phi) = (sin phi / phi) I + ((1 - cos phi) / phi) J.
+  const double a = std::abs(phi) < 1e-6 ? 1.0 - phi * phi / 6.0 : std::sin(phi) / phi;
+  const double b = std::abs(phi) < 1e-6 ? 0.5 * phi : (1.0 - std::cos(phi)) / phi;
+  Eigen::Matrix2d rotation, V, J;
+  rotation << std::cos(phi), -std::sin(phi), std::sin(phi), std::cos(phi);
+  V << a, -b, b, a;
+  J << 0.0, -1.0, 1.0, 0.0;
+  const Eigen::Index n = s.mean.size();
+  Eigen::VectorXd dc = Eigen::VectorXd::Zero(n);  // c(x̂') - c(x̂)
+  for (Eigen::Index k = 0; k < n; k += (k == 0 ? 3 : 2)) {  // the robot's position, then each landmark's
+    const Eigen::Vector2d q = prior.segment<2>(k);
+    const Eigen::Vector2d xi = s.mean.segment<2>(k) - q - phi * (J * q);  // T(x̂)^-1 K nu on q's rows
+    const Eigen::Vector2d moved = rotation * q + V * xi;
+    s.mean.segment<2>(k) = moved;
+    dc.segment<2>(k) = J * (moved - q);
+  }
+  // A P A^T = P + dc r^T + r dc^T + P_tt dc dc^T (r = P e_theta) = P + M + M^T with
+  // M = dc (r + P_tt dc / 2)^T: exactly symmetric.
+  const Eigen::VectorXd w = s.covariance.col(2) + 0.5 * s.covariance(2, 2) * dc;
+  const Eigen::MatrixXd M = dc * w.transpose();
+  s.covariance += M + M.transpose();
 }
 
 EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkMeasurement>& m,

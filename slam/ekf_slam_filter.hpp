@@ -61,6 +61,31 @@ struct EkfUpdateResult {
 EkfUpdateResult UpdateState(EkfSlamState& state, const std::vector<LinearizedObservation>& observations,
                             const Eigen::Matrix2d& R);
 
+/// The same update for the right-invariant error of the Invariant EKF (Barrau & Bonnabel
+/// 2015, "An EKF-SLAM algorithm with consistency properties"). The state is an element of
+/// SE_{1+n}(2), (R(theta), p_r, p_1, ..., p_n), and its error xi is a world-frame motion of
+/// all of it: x = exp(xi) x̂ rotates every position q about the origin by xi_theta, then
+/// moves it by V(xi_theta) xi_q. To first order e = x - x̂ = T(x̂) xi with T = I + c e_theta^T,
+/// c = J q̂ on the rows of each position q (J = [0 -1; 1 0]), 0 on the heading's.
+/// - Prediction needs nothing new: the standard F at (x̂, x̂') is T(x̂') T(x̂)^-1, i.e. the
+///   invariant error's propagation is the identity (PredictState with J_pose_pose as is).
+/// - A body-frame observation h(R^T (p_i - p_r)) has H T = (0, H_r, H_i): no heading column,
+///   at any estimate, so the rotation about the origin and the translation of everything
+///   stay unobservable (standard EKF-SLAM gains information along them: its Jacobians
+///   follow the moving estimate; Huang et al. 2010).
+/// So the batch's gain and Joseph update are UpdateState's (a Kalman update does not depend
+/// on linear coordinates); the correction xi = T(x̂)^-1 K nu is then retracted exactly,
+/// theta' = theta + xi_theta, q' = R(xi_theta) q̂ + V(xi_theta) xi_q, and the covariance of xi
+/// is expressed at the new estimate: P' = A P A^T, A = T(x̂') T(x̂)^-1 = I + (c(x̂') - c(x̂)) e_theta^T.
+EkfUpdateResult InvariantUpdateState(EkfSlamState& state, const std::vector<LinearizedObservation>& observations,
+                                     const Eigen::Matrix2d& R);
+/// InvariantUpdateState's second half, after the additive update from `prior`: the exact
+/// retraction of its correction and the covariance carried to the new estimate. (A merge's
+/// conditioning on m_a = m_b is not retracted: that constraint is in the world frame, its
+/// Jacobian in invariant coordinates has a heading column J (m_a - m_b), and retracting it
+/// measured worse; slam/README_landmark_slam.md.)
+void RetractInvariant(EkfSlamState& state, const Eigen::VectorXd& prior);
+
 /// One range-bearing measurement z of landmark `landmark` (the iterated update linearizes it itself).
 struct LandmarkMeasurement {
   int landmark = 0;

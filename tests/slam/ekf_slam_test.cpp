@@ -169,27 +169,27 @@ TEST(EkfSlam, CovarianceStaysSymmetricPsdOverALongRun) {
   EXPECT_GT(checked, 5);
 }
 
-// ANEES over 10 one-lap runs (seeds 10..19), without and with FEJ; the test prints them:
-// ./build/tests/slam_ekf_slam_test --gtest_filter=EkfSlam.ConsistentOnShortRuns
-constexpr double kShortRunsAnees[] = {2.660, 2.585};
+// ANEES over 10 one-lap runs (seeds 10..19): the EKF, FEJ, the invariant error; the test
+// prints them: ./build/tests/slam_ekf_slam_test --gtest_filter=EkfSlam.ConsistentOnShortRuns
+constexpr double kShortRunsAnees[] = {2.660, 2.585, 2.586};
 
 TEST(EkfSlam, ConsistentOnShortRuns) {
   const World world = LandmarkWorld();
-  for (int i = 0; i < 2; ++i) {
-    const bool fej = i == 1;
+  const EkfSlamConfig configs[] = {{}, {.fej = true}, {.invariant = true}};
+  for (int i = 0; i < 3; ++i) {
     double sum = 0.0, run_sum = 0.0, run_sq = 0.0;
     int count = 0;
     for (std::uint64_t seed = 10; seed < 20; ++seed) {
       const Stream stream = MakeSyntheticStream(LandmarkOptions(seed, 1), world);
-      const std::vector<double> nees = testing::PoseNees(stream, RunEkf(stream, {.fej = fej}));
+      const std::vector<double> nees = testing::PoseNees(stream, RunEkf(stream, configs[i]));
       for (double n : nees) sum += n, ++count;
       const double run = std::accumulate(nees.begin(), nees.end(), 0.0) / nees.size();
       run_sum += run, run_sq += run * run;
     }
     const NeesBand window = testing::PoseAneesWindow(10);
-    std::printf("fej %d: ANEES %.3f (per run: std %.2f), window [%.2f, %.2f]\n", fej, sum / count,
-                std::sqrt((run_sq - run_sum * run_sum / 10) / 9), window.lo, window.hi);
-    EXPECT_TRUE(testing::AneesNearMeasured(sum / count, kShortRunsAnees[i], window)) << "fej " << fej;
+    std::printf("%s: ANEES %.3f (per run: std %.2f), window [%.2f, %.2f]\n", i == 0 ? "ekf" : i == 1 ? "fej" : "invariant",
+                sum / count, std::sqrt((run_sq - run_sum * run_sum / 10) / 9), window.lo, window.hi);
+    EXPECT_TRUE(testing::AneesNearMeasured(sum / count, kShortRunsAnees[i], window)) << "configuration " << i;
   }
 }
 
