@@ -157,11 +157,12 @@ void RetractInvariant(EkfSlamState& s, const Eigen::VectorXd& prior) {
     s.mean.segment<2>(k) = moved;
     dc.segment<2>(k) = J * (moved - q);
   }
-  // A P A^T = P + dc r^T + r dc^T + P_tt dc dc^T (r = P e_theta) = P + M + M^T with
-  // M = dc (r + P_tt dc / 2)^T: exactly symmetric.
+  // A P A^T = P + dc r^T + r dc^T + P_tt dc dc^T (r = P e_theta) = P + dc w^T + w dc^T with
+  // w = r + P_tt dc / 2: a rank-2 update of the lower triangle, mirrored (exactly symmetric,
+  // no n x n temporary).
   const Eigen::VectorXd w = s.covariance.col(2) + 0.5 * s.covariance(2, 2) * dc;
-  const Eigen::MatrixXd M = dc * w.transpose();
-  s.covariance += M + M.transpose();
+  s.covariance.selfadjointView<Eigen::Lower>().rankUpdate(dc, w);
+  s.covariance.triangularView<Eigen::StrictlyUpper>() = s.covariance.transpose();
 }
 
 EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkMeasurement>& m,
