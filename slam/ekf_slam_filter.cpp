@@ -131,14 +131,9 @@ EkfUpdateResult UpdateState(EkfSlamState& s, const std::vector<LinearizedObserva
   return result;
 }
 
-EkfUpdateResult InvariantUpdateState(EkfSlamState& s, const std::vector<LinearizedObservation>& obs,
-                                     const Eigen::Matrix2d& R) {
-  const Eigen::VectorXd prior = s.mean;
-  const EkfUpdateResult result = UpdateState(s, obs, R);
-  if (result.applied) RetractInvariant(s, prior);
-  return result;
-}
-
+namespace {
+/// After the additive update from `prior`: the exact retraction of its correction and the
+/// covariance carried to the new estimate (InvariantUpdateState, slam/ekf_slam_filter.hpp).
 void RetractInvariant(EkfSlamState& s, const Eigen::VectorXd& prior) {
   const double phi = NormalizeAngle(s.mean(2) - prior(2));  // xi_theta (= the heading's correction)
   // exp on SE_{1+n}(2): R(phi) and V(phi) = (sin phi / phi) I + ((1 - cos phi) / phi) J.
@@ -163,6 +158,15 @@ void RetractInvariant(EkfSlamState& s, const Eigen::VectorXd& prior) {
   const Eigen::VectorXd w = s.covariance.col(2) + 0.5 * s.covariance(2, 2) * dc;
   s.covariance.selfadjointView<Eigen::Lower>().rankUpdate(dc, w);
   s.covariance.triangularView<Eigen::StrictlyUpper>() = s.covariance.transpose();
+}
+}  // namespace
+
+EkfUpdateResult InvariantUpdateState(EkfSlamState& s, const std::vector<LinearizedObservation>& obs,
+                                     const Eigen::Matrix2d& R) {
+  const Eigen::VectorXd prior = s.mean;
+  const EkfUpdateResult result = UpdateState(s, obs, R);
+  if (result.applied) RetractInvariant(s, prior);
+  return result;
 }
 
 EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkMeasurement>& m,

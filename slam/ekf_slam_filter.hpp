@@ -77,14 +77,11 @@ EkfUpdateResult UpdateState(EkfSlamState& state, const std::vector<LinearizedObs
 /// on linear coordinates); the correction xi = T(x̂)^-1 K nu is then retracted exactly,
 /// theta' = theta + xi_theta, q' = R(xi_theta) q̂ + V(xi_theta) xi_q, and the covariance of xi
 /// is expressed at the new estimate: P' = A P A^T, A = T(x̂') T(x̂)^-1 = I + (c(x̂') - c(x̂)) e_theta^T.
+/// (A merge's conditioning on m_a = m_b stays a standard update: that constraint is in the
+/// world frame, its Jacobian in invariant coordinates has a heading column J (m_a - m_b), and
+/// retracting it measured worse; slam/README_landmark_slam.md.)
 EkfUpdateResult InvariantUpdateState(EkfSlamState& state, const std::vector<LinearizedObservation>& observations,
                                      const Eigen::Matrix2d& R);
-/// InvariantUpdateState's second half, after the additive update from `prior`: the exact
-/// retraction of its correction and the covariance carried to the new estimate. (A merge's
-/// conditioning on m_a = m_b is not retracted: that constraint is in the world frame, its
-/// Jacobian in invariant coordinates has a heading column J (m_a - m_b), and retracting it
-/// measured worse; slam/README_landmark_slam.md.)
-void RetractInvariant(EkfSlamState& state, const Eigen::VectorXd& prior);
 
 /// One range-bearing measurement z of landmark `landmark` (the iterated update linearizes it itself).
 struct LandmarkMeasurement {

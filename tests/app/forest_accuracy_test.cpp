@@ -7,14 +7,13 @@
 // fails there). Seed 1 failed the loop closure before closure_test (test below).
 #include <gtest/gtest.h>
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <variant>
 
 #include "app/registry.hpp"
+#include "eval/consistency.hpp"
 #include "sim/simulate.hpp"
 
 namespace slambox {
@@ -256,7 +255,7 @@ TEST(ForestAccuracy, SmootherMergesDropPairsTheirHypothesisExplainsWorse) {
   EXPECT_LE(r.map.spurious + r.map.duplicates, 1);
 }
 
-/// Mean pose NEES (3 dof, heading wrapped) over the trajectory entries with a covariance.
+/// Mean pose NEES (eval/consistency.hpp) over the trajectory entries with a usable covariance.
 double Anees(const Estimate& e, const Stream& s) {
   std::map<double, SE2> gt;
   for (const auto& g : s.groundtruth) gt[g.t_s] = g.pose;
@@ -264,9 +263,8 @@ double Anees(const Estimate& e, const Stream& s) {
   int n = 0;
   for (const auto& p : e.trajectory) {
     const auto it = gt.find(p.t_s);
-    if (!p.has_covariance || it == gt.end() || p.covariance.determinant() < 1e-30) continue;
-    const Eigen::Vector3d err(p.pose.x - it->second.x, p.pose.y - it->second.y, NormalizeAngle(p.pose.theta - it->second.theta));
-    sum += err.dot(p.covariance.ldlt().solve(err)), ++n;
+    if (!p.has_covariance || it == gt.end()) continue;
+    if (const double nees = PoseNees(it->second, p.pose, p.covariance); std::isfinite(nees)) sum += nees, ++n;
   }
   return sum / n;
 }
