@@ -17,14 +17,23 @@ namespace slambox {
 
 void BindParams(FastSlamConfig& c, ParamBinder& b) {
   b.Bind("particles", c.particles, "-", "number of particles M");
+  static const EnumNames<NewLandmarkP0> kP0Names = {{NewLandmarkP0::kDensity, "density"},
+                                                     {NewLandmarkP0::kGate, "gate"}};
+  b.Bind("new_landmark_p0", c.new_landmark_p0, kP0Names,
+         "p0, below which an observation starts a landmark: the density of clutter and unmapped landmarks "
+         "(clutter_per_scan, births so far) | N(innovation at new_landmark_gate_chi2; 0, R)");
   b.Bind("new_landmark_gate_chi2", c.new_landmark_gate_chi2, "chi2",
-         "p0 = N(innovation at this squared Mahalanobis distance; 0, R): below it an observation starts a landmark");
+         "new_landmark_p0=gate: p0 = N(innovation at this squared Mahalanobis distance; 0, R)");
   b.Bind("neff_threshold", c.neff_threshold, "fraction of M", "resample when N_eff < neff_threshold * M");
   b.Bind("use_known_ids", c.use_known_ids, "-", "associate by the detector's ids when the stream has them");
   b.Bind("visibility_margin_m", c.visibility_margin_m, "m",
          "existence counters: a landmark should have been seen within range_max - margin");
   b.Bind("candidate_margin_m", c.candidate_margin_m, "m", "association candidates lie within range_max + margin");
   b.Bind("report_min_counter", c.report_min_counter, "-", "unknown ids: report landmarks whose counter reached this");
+  b.Bind("estimate_detection_rate", c.estimate_detection_rate, "-",
+         "unknown ids: a miss in view costs the counter P_D at its range (per band, over the best particle's "
+         "reported landmarks, the sensor's detection_prob as prior) instead of 1");
+  b.Bind("detection_rate_bands", c.detection_rate_bands, "bands", "range bands of the detection probability estimate");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
   static const EnumNames<FastSlamTrajectory> kTrajectoryNames = {{FastSlamTrajectory::kBest, "best"},
@@ -47,6 +56,8 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
          "set particles to e.g. 100");
   if (!(c.new_landmark_gate_chi2 > 0)) fail("new_landmark_gate_chi2", "must be positive", "e.g. 25");
   if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
+  if (c.detection_rate_bands < 1 || c.detection_rate_bands > 1000)
+    fail("detection_rate_bands", "needs 1 .. 1000 bands", "e.g. 10");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
   if (c.snapshot_period_s < 0) fail("snapshot_period_s", "must not be negative", "0 disables snapshots");
   if (c.visibility_margin_m < 0 || c.candidate_margin_m < 0) fail("visibility_margin_m", "margins must not be negative", "e.g. 0.5");
@@ -81,6 +92,11 @@ void FastSlam::Start(const StreamHeader& header) {
   update_.log_p0 = -std::log(2.0 * M_PI) - 0.5 * std::log(update_.R.determinant()) - 0.5 * config_.new_landmark_gate_chi2;
   update_.range_max_m = lm.range_max_m;
   update_.half_fov_rad = 0.5 * lm.fov_deg * M_PI / 180.0;
+  clutter_per_scan_ = lm.clutter_per_scan;
+  update_.estimate_detection_rate = config_.estimate_detection_rate;
+  update_.detection = MakeDetectionRate(lm.range_max_m, config_.detection_rate_bands, lm.detection_prob);
+  update_.confirmed_counter = config_.report_min_counter;
+  births_ = 0.0;
   update_.visibility_margin_m = config_.visibility_margin_m;
   update_.candidate_margin_m = config_.candidate_margin_m;
   rng_ = MakeGenerator(header.seed, name_);
@@ -121,15 +137,31 @@ void FastSlam::OnOdometry(const OdometryEvent& odometry) {
   RecordCloud(odometry.t_s);
 }
 
+double FakeDetectionDensity(double clutter_per_scan, double births, int scans_done, double footprint_m2) {
+  const double unmapped = std::max(0.0, births - clutter_per_scan * scans_done) + 1.0;
+  return (clutter_per_scan + unmapped / (scans_done + 1.0)) / footprint_m2;
+}
+
 void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
   const double t = landmarks.t_s;
-  for (FastSlamParticle& p : particles_) {
+  if (config_.new_landmark_p0 == NewLandmarkP0::kDensity && !update_.known_ids)
+    update_.fake_density_per_m2 = FakeDetectionDensity(
+        clutter_per_scan_, births_, scan_, update_.range_max_m * update_.range_max_m * update_.half_fov_rad);
+  double created = 0.0;
+  const int best = BestParticle();
+  std::vector<std::pair<double, bool>> expected;  // the best particle's, for the detection rate
+  for (size_t i = 0; i < particles_.size(); ++i) {
+    FastSlamParticle& p = particles_[i];
     ParticleUpdateSummary s = UpdateParticle(p, landmarks.observations, update_, rng_);
+    created += s.created;
+    if (static_cast<int>(i) == best) expected = std::move(s.expected);
     p.assignments = std::make_shared<AssignmentNode>(scan_, std::move(s.landmark_of), std::move(s.creates), p.assignments);
     p.log_weight += s.log_weight_factor;
     p.log_likelihood += s.log_weight_factor;
     if (fastslam2_) p.path = ExtendPath(p.path, t, p.pose);  // the pose was resampled at t
   }
+  births_ += created / static_cast<double>(particles_.size());
+  for (const auto& [range_m, seen] : expected) CountExpected(update_.detection, range_m, seen);
   ++scan_;
   std::vector<double> log_w(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) log_w[i] = particles_[i].log_weight;

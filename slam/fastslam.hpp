@@ -30,18 +30,32 @@ namespace slambox {
 /// weighted mean of the final particles' ancestral paths.
 enum class FastSlamTrajectory { kBest, kMean, kPathMean };
 
+/// Where p0, the likelihood of "a new landmark", comes from (FastSlamConfig::new_landmark_p0).
+enum class NewLandmarkP0 { kDensity, kGate };
+
 struct FastSlamConfig {
   int particles = 100;  ///< M
-  /// p0 is the density N(nu; 0, R) of an innovation at this squared Mahalanobis distance
-  /// under the sensor noise R alone: log p0 = -log(2 pi) - log det(R)/2 - gate/2.
   /// An observation starts a new landmark when every landmark's likelihood is below p0.
-  double new_landmark_gate_chi2 = 25.0;
+  /// kDensity: p0 is the density, in (range, bearing), of detections no mapped landmark
+  /// explains: (clutter_per_scan over the detector's footprint + landmarks not mapped yet,
+  /// estimated from the births so far) times the range (FakeDetectionDensity below).
+  /// kGate: the density N(nu; 0, R) of an innovation at the squared Mahalanobis distance
+  /// new_landmark_gate_chi2 under the sensor noise R alone:
+  /// log p0 = -log(2 pi) - log det(R)/2 - gate/2.
+  NewLandmarkP0 new_landmark_p0 = NewLandmarkP0::kGate;
+  double new_landmark_gate_chi2 = 25.0;  ///< [chi2] p0 with new_landmark_p0 = gate
   double neff_threshold = 0.5;    ///< [fraction of M] resample when N_eff < neff_threshold * M
   bool use_known_ids = true;      ///< associate by the detector's ids when the stream has them
   double visibility_margin_m = 0.5;  ///< [m] counters: "should have been seen" within range_max - margin
   double candidate_margin_m = 2.0;   ///< [m] association candidates: means within range_max + margin
   int report_min_counter = 10;       ///< unknown ids: report landmarks whose counter reached this (10 Hz: ~1 s net sightings)
   double motion_noise_scale = 1.0;   ///< factor on the odometry model's covariance
+  /// Unknown ids: a miss in view costs the counter P_D at the landmark's range, estimated
+  /// per range band from the best particle's landmarks whose counter reached
+  /// report_min_counter, the sensor's detection_prob as prior (slam/detection_rate.hpp);
+  /// else 1 (Thrun's counter).
+  bool estimate_detection_rate = false;
+  int detection_rate_bands = 10;     ///< [bands] range bands of that estimate over [0, range_max)
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
   FastSlamTrajectory trajectory = FastSlamTrajectory::kBest;  ///< what goes into Estimate::trajectory
 };
@@ -52,6 +66,14 @@ struct FastSlam2Config : FastSlamConfig {
   FastSlam2Config() { particles = 50; }
 };
 void BindParams(FastSlam2Config& c, ParamBinder& b);
+
+/// [1/m^2] Detections per scan and m^2 that no mapped landmark explains, after
+/// `scans_done` scans over a detector footprint of `footprint_m2` (r_max^2 half_fov): the
+/// clutter, clutter_per_scan / footprint, plus the landmarks not mapped yet. Those are the
+/// `births` so far (landmarks created, mean over the particles) less the clutter expected
+/// among them, per scan over the footprint; one birth is assumed before the first scan
+/// (Laplace's rule), so the density stays positive and decays as the map stops growing.
+double FakeDetectionDensity(double clutter_per_scan, double births, int scans_done, double footprint_m2);
 
 class FastSlam : public SlamModule {
  public:
@@ -83,6 +105,8 @@ class FastSlam : public SlamModule {
   std::vector<PoseEstimate> cloud_;  ///< weighted mean and covariance, at each path time
   double next_snapshot_s_ = 0.0;
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
+  double clutter_per_scan_ = 0.0;  ///< the detector's (stream header)
+  double births_ = 0.0;            ///< landmarks created so far, mean over the particles
   Estimate estimate_;
 };
 

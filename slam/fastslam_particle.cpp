@@ -45,7 +45,7 @@ Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector
     const PredictedMeasurement predicted = PredictMeasurement(prior, *FindLandmark(p.map, a.candidates[c]), o.R);
     for (size_t j = 0; j < z.size(); ++j) {
       const double ll = LogLikelihood(predicted, z[j]);
-      if (ll >= o.log_p0) pairs.emplace_back(-ll, static_cast<int>(j), static_cast<int>(c));
+      if (ll >= o.LogP0(z[j].x())) pairs.emplace_back(-ll, static_cast<int>(j), static_cast<int>(c));
     }
   }
   std::sort(pairs.begin(), pairs.end());
@@ -60,19 +60,26 @@ Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector
 }
 
 // Thrun 13.2 lines 25-31: a landmark in range that should have been seen but was not
-// loses one count; below zero it is discarded.
-int ApplyExistenceCounters(FastSlamParticle& p, const Association& a, const ParticleUpdateOptions& o) {
+// loses one count (with an estimated detection rate: the detection that was expected at
+// its range, P_D(r)); below zero it is discarded. Confirmed landmarks in view are listed
+// in `expected` with whether they were seen, for the rate.
+int ApplyExistenceCounters(FastSlamParticle& p, const Association& a, const ParticleUpdateOptions& o,
+                           std::vector<std::pair<double, bool>>& expected) {
   std::vector<int> matched;
   for (int k : a.key)
     if (k >= 0) matched.push_back(k);
   std::sort(matched.begin(), matched.end());
   int discarded = 0;
   for (int key : a.candidates) {
-    if (std::binary_search(matched.begin(), matched.end(), key)) continue;
+    const bool seen = std::binary_search(matched.begin(), matched.end(), key);
     LandmarkGaussian lm = *FindLandmark(p.map, key);
     const Eigen::Vector2d z = PredictObservation(p.pose, lm.mean).z;
     if (z.x() > o.range_max_m - o.visibility_margin_m || std::abs(z.y()) > o.half_fov_rad) continue;
-    if (--lm.counter < 0) {
+    // Confirmed before this scan (a sighting has already added its count).
+    if (lm.counter - (seen ? 1.0 : 0.0) >= o.confirmed_counter) expected.emplace_back(z.x(), seen);
+    if (seen) continue;
+    lm.counter -= o.estimate_detection_rate ? DetectionProbability(o.detection, z.x()) : 1.0;
+    if (lm.counter < 0) {
       EraseLandmark(p.map, key);
       ++discarded;
     } else {
@@ -118,11 +125,11 @@ ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<Land
       SetLandmark(p.map, new_key, InitializeLandmark(p.pose, z[j], o.R));
       s.landmark_of[j] = new_key;
       s.creates[j] = 1;
-      if (!o.known_ids) s.log_weight_factor += o.log_p0;
+      if (!o.known_ids) s.log_weight_factor += o.LogP0(z[j].x());
       ++s.created;
     }
   }
-  if (!o.known_ids) s.discarded = ApplyExistenceCounters(p, a, o);
+  if (!o.known_ids) s.discarded = ApplyExistenceCounters(p, a, o, s.expected);
   return s;
 }
 

@@ -4,10 +4,13 @@
 // existence counters (Thrun, Prob. Robotics, Tables 13.1-13.3; Montemerlo et al. 2002,
 // 2003).
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
 #include "core/stream.hpp"
+#include "slam/detection_rate.hpp"
 #include "slam/landmark_tree.hpp"
 #include "slam/particle_path.hpp"
 
@@ -51,11 +54,25 @@ struct ParticleUpdateOptions {
   /// Associate by the detector's ids (id < 0 is clutter and ignored); otherwise maximum
   /// likelihood with new landmarks against p0 and the existence counters.
   bool known_ids = true;
-  double log_p0 = -5.0;  ///< log of p0, the likelihood of "a new landmark" (Thrun 13.2, w_{N+1})
+  /// p0, the likelihood of "a new landmark" (Thrun 13.2, w_{N+1}) in (range, bearing):
+  /// with fake_density_per_m2 > 0, that density of detections no mapped landmark explains
+  /// (clutter and landmarks not mapped yet) times the range, as dx dy = r dr dbearing;
+  /// otherwise the constant exp(log_p0).
+  double log_p0 = -5.0;
+  double fake_density_per_m2 = 0.0;  ///< [1/m^2] see log_p0
+  /// log p0 of a detection at this range.
+  double LogP0(double range_m) const {
+    return fake_density_per_m2 > 0.0 ? std::log(fake_density_per_m2 * std::max(range_m, std::sqrt(R(0, 0)))) : log_p0;
+  }
   double range_max_m = 15.0;       ///< the detector's perceptual range
   double half_fov_rad = M_PI;      ///< half the detector's field of view
   double visibility_margin_m = 0.5;  ///< a landmark "should have been seen" only within range_max - margin
   double candidate_margin_m = 2.0;   ///< candidates for association: means within range_max + margin
+  /// Existence counters: a miss in view costs P_D at the landmark's range from this rate
+  /// (slam/detection_rate.hpp) when `estimate_detection_rate`, else 1.
+  bool estimate_detection_rate = false;
+  DetectionRate detection;
+  double confirmed_counter = 10.0;  ///< landmarks whose counter reached this measure the rate
 };
 
 struct ParticleUpdateSummary {
@@ -65,6 +82,8 @@ struct ParticleUpdateSummary {
   int discarded = 0;  ///< removed by the existence counters
   std::vector<int> landmark_of;  ///< per observation: the key it updated or created, or -1 (ignored)
   std::vector<char> creates;     ///< per observation: it created that landmark
+  /// Confirmed landmarks (counter >= confirmed_counter) expected in view: (range, detected).
+  std::vector<std::pair<double, bool>> expected;
 };
 
 /// Processes one scan for one particle. `rng` draws FastSLAM 2.0's pose sample.

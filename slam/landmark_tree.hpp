@@ -19,7 +19,9 @@ namespace slambox {
 struct LandmarkGaussian {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();  ///< [m] world frame
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  ///< [m^2]
-  int counter = 1;
+  /// +1 per sighting, minus the detection probability at its range per miss in view
+  /// (1 without an estimated rate); gone below 0.
+  double counter = 1.0;
 };
 
 struct LandmarkTreeNode {

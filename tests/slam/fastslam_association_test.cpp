@@ -36,6 +36,34 @@ FastSlamParticle ParticleWith(const std::vector<Eigen::Vector2d>& landmarks, int
 
 LandmarkObservation Obs(double r, double b) { return {r, b, -1}; }
 
+// new_landmark_p0=density: p0 at range r is fake_density_per_m2 * r (dx dy = r dr db), the
+// range held at sigma_range or more; without a density, the constant log_p0.
+TEST(FastSlamAssociation, DensityP0IsTheFakeDensityTimesTheRange) {
+  ParticleUpdateOptions o = UnknownIds();
+  o.log_p0 = -7.5;
+  EXPECT_EQ(o.LogP0(5.0), -7.5);
+  o.fake_density_per_m2 = 2e-3;
+  EXPECT_DOUBLE_EQ(o.LogP0(5.0), std::log(1e-2));
+  EXPECT_DOUBLE_EQ(o.LogP0(0.0), std::log(2e-3 * 0.05));  // sigma_range = 0.05 m
+
+  // The decision and the weight factor follow the density: just above the likelihood a
+  // new landmark at p0, just below a match.
+  const FastSlamParticle start = ParticleWith({{5, 0}, {0, 6}});
+  const LandmarkObservation z = Obs(5.2, 0.03);
+  const double ll = MeasureLandmark(start.pose, *FindLandmark(start.map, 0), {z.range_m, z.bearing_rad}, o.R).log_likelihood;
+  std::mt19937_64 rng(1);
+  o.fake_density_per_m2 = std::exp(ll + 1e-9) / 5.2;
+  FastSlamParticle a = start;
+  const ParticleUpdateSummary sa = UpdateParticle(a, {z}, o, rng);
+  EXPECT_EQ(sa.created, 1);
+  EXPECT_NEAR(sa.log_weight_factor, ll + 1e-9, 1e-12);
+  o.fake_density_per_m2 = std::exp(ll - 1e-9) / 5.2;
+  FastSlamParticle b = start;
+  const ParticleUpdateSummary sb = UpdateParticle(b, {z}, o, rng);
+  EXPECT_EQ(sb.matched, 1);
+  EXPECT_EQ(sb.created, 0);
+}
+
 // One landmark; the observation's likelihood is ll. With p0 just above ll a new
 // landmark is created and the weight factor is p0; just below, the landmark is matched
 // and the factor is ll.
@@ -119,6 +147,44 @@ TEST(FastSlamAssociation, CountersSkipLandmarksThatCouldNotHaveBeenSeen) {
   EXPECT_EQ(p.map.size, 3);
   EXPECT_EQ(FindLandmark(p.map, 3), nullptr);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(FindLandmark(p.map, k)->counter, 0) << k;
+}
+
+// estimate_detection_rate: a miss in view costs P_D at the landmark's range. With the
+// configured probability 1 as prior, P_D is 0.5 in the band of (4, 0) (one of three
+// expected scans seen: (1 + 1) / (3 + 1)) and 1 in the empty band of (6, 0). The landmark
+// at (4, 0) with counter 0.5 survives its first miss (0) and goes at the second (-0.5; with
+// the cost 1 it would go at the first); the confirmed one at (6, 0) is listed as expected,
+// seen or not, and pays 1 when missed.
+TEST(FastSlamAssociation, MissesCostTheDetectionProbabilityAtTheirRange) {
+  ParticleUpdateOptions o = UnknownIds();
+  o.log_p0 = -10;
+  o.estimate_detection_rate = true;
+  o.confirmed_counter = 10;
+  o.detection = MakeDetectionRate(10.0, 10, 1.0);
+  CountExpected(o.detection, 4.5, true);
+  CountExpected(o.detection, 4.5, false);
+  CountExpected(o.detection, 4.5, false);
+  ASSERT_DOUBLE_EQ(DetectionProbability(o.detection, 4.0), 0.5);
+  ASSERT_DOUBLE_EQ(DetectionProbability(o.detection, 6.0), 1.0);
+  FastSlamParticle p = ParticleWith({{4, 0}, {6, 0}}, 10);
+  LandmarkGaussian weak = *FindLandmark(p.map, 0);
+  weak.counter = 0.5;
+  SetLandmark(p.map, 0, weak);
+  std::mt19937_64 rng(1);
+  ParticleUpdateSummary s = UpdateParticle(p, {Obs(6, 0)}, o, rng);
+  EXPECT_EQ(s.matched, 1);
+  EXPECT_EQ(s.discarded, 0);
+  EXPECT_DOUBLE_EQ(FindLandmark(p.map, 0)->counter, 0.0);
+  EXPECT_DOUBLE_EQ(FindLandmark(p.map, 1)->counter, 11.0);
+  ASSERT_EQ(s.expected.size(), 1u);  // (4, 0) is not confirmed
+  EXPECT_NEAR(s.expected[0].first, 6.0, 0.05);
+  EXPECT_TRUE(s.expected[0].second);
+  s = UpdateParticle(p, {}, o, rng);
+  EXPECT_EQ(s.discarded, 1);
+  EXPECT_EQ(FindLandmark(p.map, 0), nullptr);
+  EXPECT_DOUBLE_EQ(FindLandmark(p.map, 1)->counter, 10.0);
+  ASSERT_EQ(s.expected.size(), 1u);
+  EXPECT_FALSE(s.expected[0].second);
 }
 
 TEST(FastSlamAssociation, KnownIdsUseTheIdsAndIgnoreClutter) {

@@ -244,5 +244,41 @@ TEST(FastSlamModule, ClutterIsFilteredByTheExistenceCounters) {
   }
 }
 
+// The density behind new_landmark_p0=density, by hand: 100 scans done with 0.2 clutter
+// per scan over a 50 m^2 footprint and 30 births, 20 of them expected to be clutter:
+// (0.2 + (30 - 20 + 1) / 101) / 50. Before any scan only Laplace's one birth; a clutter-only
+// stream (births equal to the clutter expected) leaves the clutter and a vanishing rest.
+TEST(FastSlamModule, FakeDetectionDensityByHand) {
+  EXPECT_DOUBLE_EQ(FakeDetectionDensity(0.2, 30.0, 100, 50.0), (0.2 + 11.0 / 101.0) / 50.0);
+  EXPECT_DOUBLE_EQ(FakeDetectionDensity(0.0, 0.0, 0, 50.0), 1.0 / 50.0);
+  EXPECT_DOUBLE_EQ(FakeDetectionDensity(1.0, 900.0, 1000, 50.0), (1.0 + 1.0 / 1001.0) / 50.0);
+  EXPECT_DOUBLE_EQ(FakeDetectionDensity(0.0, 25.0, 999, 50.0), 26.0 / 1000.0 / 50.0);
+}
+
+// ATE [m] with one false detection per scan that the header declares, p0 from the density
+// (seed 31; fastslam1, fastslam2); the test prints them:
+// ./build/tests/slam_fastslam_module_test --gtest_filter=FastSlamModule.DensityP0*
+constexpr double kDensityP0ClutterAte_m[] = {0.0840, 0.0371};
+
+TEST(FastSlamModule, DensityP0FiltersDeclaredClutter) {
+  Stream s = WithClutter(MakeStream(31, false), 1.0, 99);
+  s.header.sensors.landmarks->clutter_per_scan = 1.0;
+  const double odo = AteRmse(RunModule<DeadReckoning>(s, DeadReckoningConfig{}), s);
+  for (bool fs2 : {false, true}) {
+    FastSlamConfig c;
+    c.particles = fs2 ? 50 : 100;
+    c.new_landmark_p0 = NewLandmarkP0::kDensity;
+    const Estimate e = RunModule<FastSlam>(s, c, fs2);
+    const MapScore m = ScoreMap(e, s.header.world);
+    std::printf("fastslam%d, density p0, clutter: ate %.4f (odometry %.3f) found %d duplicates %d spurious %d\n",
+                fs2 ? 2 : 1, AteRmse(e, s), odo, m.found, m.duplicates, m.spurious);
+    EXPECT_TRUE(NoWorseThanMeasured(AteRmse(e, s), kDensityP0ClutterAte_m[fs2 ? 1 : 0])) << "fastslam" << (fs2 ? 2 : 1);
+    EXPECT_LT(AteRmse(e, s), 0.5 * odo);
+    EXPECT_EQ(m.found, 25);
+    EXPECT_EQ(m.duplicates, 0);
+    EXPECT_EQ(m.spurious, 0);
+  }
+}
+
 }  // namespace
 }  // namespace slambox
