@@ -61,8 +61,8 @@ Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector
 
 // Thrun 13.2 lines 25-31: a landmark in range that should have been seen but was not
 // loses one count (with an estimated detection rate: the detection that was expected at
-// its range, P_D(r)); below zero it is discarded. Confirmed landmarks in view are listed
-// in `expected` with whether they were seen, for the rate.
+// its range, P_D(r)); below zero it is discarded. With the rate, confirmed landmarks in
+// view are listed in `expected` with whether they were seen, to estimate it.
 int ApplyExistenceCounters(FastSlamParticle& p, const Association& a, const ParticleUpdateOptions& o,
                            std::vector<std::pair<double, bool>>& expected) {
   std::vector<int> matched;
@@ -76,7 +76,8 @@ int ApplyExistenceCounters(FastSlamParticle& p, const Association& a, const Part
     const Eigen::Vector2d z = PredictObservation(p.pose, lm.mean).z;
     if (z.x() > o.range_max_m - o.visibility_margin_m || std::abs(z.y()) > o.half_fov_rad) continue;
     // Confirmed before this scan (a sighting has already added its count).
-    if (lm.counter - (seen ? 1.0 : 0.0) >= o.confirmed_counter) expected.emplace_back(z.x(), seen);
+    if (o.estimate_detection_rate && lm.counter - (seen ? 1.0 : 0.0) >= o.confirmed_counter)
+      expected.emplace_back(z.x(), seen);
     if (seen) continue;
     lm.counter -= o.estimate_detection_rate ? DetectionProbability(o.detection, z.x()) : 1.0;
     if (lm.counter < 0) {

@@ -82,7 +82,8 @@ struct ParticleUpdateSummary {
   int discarded = 0;  ///< removed by the existence counters
   std::vector<int> landmark_of;  ///< per observation: the key it updated or created, or -1 (ignored)
   std::vector<char> creates;     ///< per observation: it created that landmark
-  /// Confirmed landmarks (counter >= confirmed_counter) expected in view: (range, detected).
+  /// With estimate_detection_rate: confirmed landmarks (counter >= confirmed_counter)
+  /// expected in view, (range, detected); empty otherwise.
   std::vector<std::pair<double, bool>> expected;
 };
 
