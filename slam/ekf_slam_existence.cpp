@@ -33,11 +33,8 @@ double EkfSlam::NewLandmarkPriorLogRatio() const {
 }
 
 double EkfSlam::NewLandmarkDensity() const {
-  // Detections that started a landmark, less the clutter expected among them, per scan
-  // over the sensor's footprint (r^2 half_fov): the density of new landmarks per scan.
-  const double scans = scan_ + 1.0;
-  const double footprint_m2 = range_max_m_ * range_max_m_ * half_fov_rad_;
-  return std::max(0.0, births_ - clutter_per_scan_ * scans) / (scans * footprint_m2);
+  return UnmappedLandmarkDensity(births_, scan_ + 1.0, clutter_per_scan_, range_max_m_ * range_max_m_ * half_fov_rad_,
+                                 0.0);
 }
 
 bool EkfSlam::ReadyToConfirm(const LandmarkTrack& t) const {

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/limits.hpp"
 #include "core/odometry_model.hpp"
+#include "slam/landmark_existence.hpp"
 #include "slam/particle_weights.hpp"
 #include "slam/range_bearing.hpp"
 
@@ -138,8 +139,7 @@ void FastSlam::OnOdometry(const OdometryEvent& odometry) {
 }
 
 double FakeDetectionDensity(double clutter_per_scan, double births, int scans_done, double footprint_m2) {
-  const double unmapped = std::max(0.0, births - clutter_per_scan * scans_done) + 1.0;
-  return (clutter_per_scan + unmapped / (scans_done + 1.0)) / footprint_m2;
+  return clutter_per_scan / footprint_m2 + UnmappedLandmarkDensity(births, scans_done, clutter_per_scan, footprint_m2, 1.0);
 }
 
 void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {

@@ -69,10 +69,9 @@ void BindParams(FastSlam2Config& c, ParamBinder& b);
 
 /// [1/m^2] Detections per scan and m^2 that no mapped landmark explains, after
 /// `scans_done` scans over a detector footprint of `footprint_m2` (r_max^2 half_fov): the
-/// clutter, clutter_per_scan / footprint, plus the landmarks not mapped yet. Those are the
-/// `births` so far (landmarks created, mean over the particles) less the clutter expected
-/// among them, per scan over the footprint; one birth is assumed before the first scan
-/// (Laplace's rule), so the density stays positive and decays as the map stops growing.
+/// clutter, clutter_per_scan / footprint, plus the landmarks not mapped yet
+/// (UnmappedLandmarkDensity, slam/landmark_existence.hpp, of the `births` so far, mean over
+/// the particles, with one pseudo-scan of one birth before the first scan).
 double FakeDetectionDensity(double clutter_per_scan, double births, int scans_done, double footprint_m2);
 
 class FastSlam : public SlamModule {

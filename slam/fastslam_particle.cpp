@@ -18,6 +18,7 @@ constexpr int kIgnored = -2;  // clutter in known-id mode
 struct Association {
   std::vector<int> key;         // per observation: a landmark key, kNewLandmark or kIgnored
   std::vector<int> candidates;  // landmarks in range before the update (for the counters)
+  std::vector<double> log_p0;   // per observation (unknown ids): log p0 at its range
 };
 
 // Maximum-likelihood correspondences, mutually exclusive within a scan: pairs are taken
@@ -36,6 +37,8 @@ Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector
   const double reach = o.range_max_m + o.candidate_margin_m;
   const Eigen::Vector2d t = p.pose.translation();
   a.candidates = LandmarksInBox(p.map, (t.array() - reach).matrix(), (t.array() + reach).matrix());
+  a.log_p0.resize(z.size());
+  for (size_t j = 0; j < z.size(); ++j) a.log_p0[j] = o.LogP0(z[j].x());
   std::vector<std::tuple<double, int, int>> pairs;  // (-log-likelihood, observation, candidate)
   // The score of z against a landmark: log N(z; h, Q) at the particle's pose (1.0, zero
   // pose covariance), or the predictive likelihood over the proposal prior (2.0,
@@ -45,7 +48,7 @@ Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector
     const PredictedMeasurement predicted = PredictMeasurement(prior, *FindLandmark(p.map, a.candidates[c]), o.R);
     for (size_t j = 0; j < z.size(); ++j) {
       const double ll = LogLikelihood(predicted, z[j]);
-      if (ll >= o.LogP0(z[j].x())) pairs.emplace_back(-ll, static_cast<int>(j), static_cast<int>(c));
+      if (ll >= a.log_p0[j]) pairs.emplace_back(-ll, static_cast<int>(j), static_cast<int>(c));
     }
   }
   std::sort(pairs.begin(), pairs.end());
@@ -126,7 +129,7 @@ ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<Land
       SetLandmark(p.map, new_key, InitializeLandmark(p.pose, z[j], o.R));
       s.landmark_of[j] = new_key;
       s.creates[j] = 1;
-      if (!o.known_ids) s.log_weight_factor += o.LogP0(z[j].x());
+      if (!o.known_ids) s.log_weight_factor += a.log_p0[j];
       ++s.created;
     }
   }

@@ -29,4 +29,9 @@ double MissedLogRatio(double p_detect, double p_gate, double mu) {
   return ClampedLogRatio(1.0 - std::clamp(p_detect, 0.0, 1.0) * p_gate, std::exp(-std::max(0.0, mu)));
 }
 
+double UnmappedLandmarkDensity(double births, double scans, double clutter_per_scan, double footprint_m2,
+                               double prior_scans) {
+  return (std::max(0.0, births - clutter_per_scan * scans) + prior_scans) / ((scans + prior_scans) * footprint_m2);
+}
+
 }  // namespace slambox

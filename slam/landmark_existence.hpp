@@ -32,4 +32,12 @@ double DetectedLogRatio(double p_detect, double p_gate, double mu);
 /// log P[not paired | real] / P[not paired | phantom] = log((1 - P_D P_G) / exp(-mu)).
 double MissedLogRatio(double p_detect, double p_gate, double mu);
 
+/// [1/m^2] The density of landmarks not mapped yet, per scan: of the `births` (detections
+/// that started a landmark) in `scans` scans, less the clutter_per_scan expected per scan
+/// among them, per scan over the detector's footprint r_max^2 half_fov. `prior_scans`
+/// pseudo-scans with one birth each come first (Laplace's rule: the density stays positive
+/// before the first birth and decays as the map stops growing; 0 for none).
+double UnmappedLandmarkDensity(double births, double scans, double clutter_per_scan, double footprint_m2,
+                               double prior_scans);
+
 }  // namespace slambox
