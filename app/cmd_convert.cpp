@@ -63,7 +63,8 @@ void ConvertVictoriaPark(const ConvertRequest& r) {
   line.precision(3);
   line << "converted " << r.input << ": " << poses << " odometry steps, " << observations
        << " observations (known ids; median sigma_range " << lm.sigma_range_m << " m, sigma_bearing "
-       << lm.sigma_bearing_deg << " deg, range max " << lm.range_max_m << " m; odometry alpha";
+       << lm.sigma_bearing_deg << " deg, range max " << lm.range_max_m << " m"
+       << (lm.detection_prob_known ? "" : ", detection probability not in the file") << "; odometry alpha";
   line.precision(6);
   for (double a : s.header.sensors.odometry->alpha) line << " " << a;
   line << (r.alpha.empty() ? " fitted to the file's covariances" : "") << ") -> " << r.output;

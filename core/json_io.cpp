@@ -216,6 +216,7 @@ json ToJson(const SensorSuite& s) {
     j["landmarks"] = {{"rate_hz", l.rate_hz}, {"range_max_m", l.range_max_m}, {"fov_deg", l.fov_deg},
                       {"sigma_range_m", l.sigma_range_m}, {"sigma_bearing_deg", l.sigma_bearing_deg},
                       {"known_ids", l.known_ids}, {"detection_prob", l.detection_prob},
+                      {"detection_prob_known", l.detection_prob_known},
                       {"clutter_per_scan", l.clutter_per_scan}};
   }
   if (s.gyro) j["gyro"] = {{"rate_hz", s.gyro->rate_hz}, {"sigma_dps", s.gyro->sigma_dps}, {"bias_dps", s.gyro->bias_dps}};
@@ -254,6 +255,7 @@ SensorSuite SensorSuiteFromJson(const json& j) {
     c.sigma_bearing_deg = l.value("sigma_bearing_deg", c.sigma_bearing_deg);
     c.known_ids = l.value("known_ids", c.known_ids);
     c.detection_prob = l.value("detection_prob", c.detection_prob);
+    c.detection_prob_known = l.value("detection_prob_known", c.detection_prob_known);
     c.clutter_per_scan = l.value("clutter_per_scan", c.clutter_per_scan);
     s.landmarks = c;
   }

@@ -34,6 +34,9 @@ struct LandmarkSensorConfig {
   double sigma_bearing_deg = 1.0;
   bool known_ids = true;
   double detection_prob = 1.0;
+  /// false: the source does not say its P_D (a converted log); detection_prob is then only
+  /// a placeholder, and modules that can measure the rate from the data do so.
+  bool detection_prob_known = true;
   double clutter_per_scan = 0.0;  ///< Poisson mean of false detections per scan
 };
 

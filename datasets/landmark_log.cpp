@@ -90,6 +90,7 @@ Stream AssembleLandmarkLog(const LandmarkLog& log, const std::string& name, cons
   lm.sigma_range_m = Median(sigma_range);
   lm.sigma_bearing_deg = Median(sigma_bearing) * 180.0 / M_PI;
   lm.known_ids = true;
+  lm.detection_prob_known = false;  // the file lists detections, not the scans that missed one
   s.header.sensors.odometry = odo;
   s.header.sensors.landmarks = lm;
   return s;

@@ -117,7 +117,9 @@ Stream AssembleLaserLog(LaserLog log, const std::string& name, const LaserLogOpt
     s.header.sensors.lidar = lidar;
   }
   if (!log.landmarks.empty()) {
-    LandmarkSensorConfig landmarks = log.landmark_sensor.value_or(LandmarkSensorConfig{});
+    LandmarkSensorConfig unsaid;  // a log without a sensor block says nothing of its P_D either
+    unsaid.detection_prob_known = false;
+    LandmarkSensorConfig landmarks = log.landmark_sensor.value_or(unsaid);
     landmarks.rate_hz = static_cast<double>(log.landmarks.size()) / duration;
     s.header.sensors.landmarks = landmarks;
   }

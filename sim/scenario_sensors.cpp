@@ -50,6 +50,7 @@ LandmarkSensorConfig ParseLandmarkSensor(const YamlSource& src, const YAML::Node
   c.sigma_bearing_deg = GetDouble(src, n, p, "sigma_bearing_deg", c.sigma_bearing_deg, AtLeast(0.0));
   c.known_ids = GetBool(src, n, p, "known_ids", c.known_ids);
   c.detection_prob = GetDouble(src, n, p, "detection_prob", c.detection_prob, kProbability);
+  c.detection_prob_known = GetBool(src, n, p, "detection_prob_known", c.detection_prob_known);
   c.clutter_per_scan = GetDouble(src, n, p, "clutter_per_scan", c.clutter_per_scan, Between(0.0, limits::kMaxClutterPerScan));
   return c;
 }

@@ -115,6 +115,7 @@ void EmitSensors(YAML::Emitter& out, const SensorSuite& s) {
     KV{out}("rate_hz", l->rate_hz)("range_max_m", l->range_max_m)("fov_deg", l->fov_deg)("sigma_range_m",
                                                                                           l->sigma_range_m)(
         "sigma_bearing_deg", l->sigma_bearing_deg)("known_ids", l->known_ids)("detection_prob", l->detection_prob)(
+        "detection_prob_known", l->detection_prob_known)(
         "clutter_per_scan", l->clutter_per_scan);
     out << YAML::EndMap;
   }

@@ -33,7 +33,7 @@ const std::vector<std::string>* ScenarioKeysAt(const std::string& path) {
         "dropout_prob"}},
       {"sensors.landmarks",
        {"rate_hz", "range_max_m", "fov_deg", "sigma_range_m", "sigma_bearing_deg", "known_ids",
-        "detection_prob", "clutter_per_scan"}},
+        "detection_prob", "detection_prob_known", "clutter_per_scan"}},
       {"sensors.gyro", {"rate_hz", "sigma_dps", "bias_dps"}},
   };
   auto it = kKeys.find(path);

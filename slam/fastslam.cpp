@@ -31,9 +31,12 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
          "existence counters: a landmark should have been seen within range_max - margin");
   b.Bind("candidate_margin_m", c.candidate_margin_m, "m", "association candidates lie within range_max + margin");
   b.Bind("report_min_counter", c.report_min_counter, "-", "unknown ids: report landmarks whose counter reached this");
-  b.Bind("estimate_detection_rate", c.estimate_detection_rate, "-",
+  static const EnumNames<DetectionRateUse> kRateNames = {
+      {DetectionRateUse::kAuto, "auto"}, {DetectionRateUse::kAlways, "true"}, {DetectionRateUse::kNever, "false"}};
+  b.Bind("estimate_detection_rate", c.estimate_detection_rate, kRateNames,
          "unknown ids: a miss in view costs the counter P_D at its range (per band, over the best particle's "
-         "reported landmarks, the sensor's detection_prob as prior) instead of 1");
+         "reported landmarks, the sensor's detection_prob as prior) instead of 1; auto: where the stream does "
+         "not state its P_D (detection_prob_known false: converted logs)");
   b.Bind("detection_rate_bands", c.detection_rate_bands, "bands", "range bands of the detection probability estimate");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
@@ -94,7 +97,9 @@ void FastSlam::Start(const StreamHeader& header) {
   update_.range_max_m = lm.range_max_m;
   update_.half_fov_rad = 0.5 * lm.fov_deg * M_PI / 180.0;
   clutter_per_scan_ = lm.clutter_per_scan;
-  update_.estimate_detection_rate = config_.estimate_detection_rate;
+  update_.estimate_detection_rate =
+      config_.estimate_detection_rate == DetectionRateUse::kAlways ||
+      (config_.estimate_detection_rate == DetectionRateUse::kAuto && !lm.detection_prob_known);
   update_.detection = MakeDetectionRate(lm.range_max_m, config_.detection_rate_bands, lm.detection_prob);
   update_.confirmed_counter = config_.report_min_counter;
   births_ = 0.0;

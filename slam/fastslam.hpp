@@ -32,6 +32,10 @@ enum class FastSlamTrajectory { kBest, kMean, kPathMean };
 
 /// Where p0, the likelihood of "a new landmark", comes from (FastSlamConfig::new_landmark_p0).
 enum class NewLandmarkP0 { kDensity, kGate };
+/// When a miss costs the estimated detection rate (FastSlamConfig::estimate_detection_rate):
+/// kAuto where the stream does not state its P_D (LandmarkSensorConfig::detection_prob_known
+/// false: converted logs), kAlways, kNever. Names "auto", "true", "false".
+enum class DetectionRateUse { kAuto, kAlways, kNever };
 
 struct FastSlamConfig {
   int particles = 100;  ///< M
@@ -53,8 +57,9 @@ struct FastSlamConfig {
   /// Unknown ids: a miss in view costs the counter P_D at the landmark's range, estimated
   /// per range band from the best particle's landmarks whose counter reached
   /// report_min_counter, the sensor's detection_prob as prior (slam/detection_rate.hpp);
-  /// else 1 (Thrun's counter).
-  bool estimate_detection_rate = false;
+  /// else 1 (Thrun's counter). auto: only where the stream does not state its P_D; a
+  /// stated one is trusted (in simulation the rate costs: slam/README_fastslam.md).
+  DetectionRateUse estimate_detection_rate = DetectionRateUse::kAuto;
   int detection_rate_bands = 10;     ///< [bands] range bands of that estimate over [0, range_max)
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
   FastSlamTrajectory trajectory = FastSlamTrajectory::kBest;  ///< what goes into Estimate::trajectory

@@ -86,6 +86,7 @@ struct Reader {
         c.sigma_range_m = br->sensor_std_range;
         c.sigma_bearing_deg = br->sensor_std_yaw * 180.0 / M_PI;
         c.known_ids = false;
+        c.detection_prob_known = false;  // CObservationBearingRange does not carry it
         log.landmark_sensor = c;
       }
       for (const auto& obs : l.observations) log.landmark_sensor->known_ids |= obs.id >= 0;

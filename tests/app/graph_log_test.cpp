@@ -64,6 +64,8 @@ TEST(GraphLog, TinyIsamGraphGivesExactEvents) {
   for (const Eigen::Matrix3d& c : g.log.increment_covariances) EXPECT_TRUE(c.isApprox(step_covariance, 1e-12)) << c;
 
   const Stream s = AssembleLandmarkLog(g.log, "tiny.txt", {.pose_period_s = 1.0, .fov_deg = 360.0});
+  ASSERT_TRUE(s.header.sensors.landmarks);
+  EXPECT_FALSE(s.header.sensors.landmarks->detection_prob_known);  // a graph lists sightings, not misses
   struct Expected {
     double t_s;
     std::optional<SE2> delta;  ///< an odometry event, else a landmark event with `seen`

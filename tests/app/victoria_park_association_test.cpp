@@ -72,24 +72,29 @@ TEST(VictoriaParkAssociation, HiddenIdsAgreeWithTheFile) {
 // FastSLAM's existence counters on the same log: Thrun's -1 per miss in view assumes a
 // detector that sees every tree in view, and this one sees a tree in view in at most about
 // half of the scans, so every particle's trees count down to removal and are mapped again.
-// With estimate_detection_rate a miss costs P_D at the tree's range (slam/detection_rate.hpp).
+// With the estimated detection rate a miss costs P_D at the tree's range
+// (slam/detection_rate.hpp). The converter cannot know the detector's P_D and says so
+// (detection_prob_known false), so FastSLAM's default (auto) estimates it here.
 // Measured (this test prints them): fastslam2 agreement 0.2640 (3600 duplicates) with -1 per
 // miss, 0.8683 (1465 duplicates) with the rate; `slambox run vp.stream --algo fastslam2
-// --hide-landmark-ids --no-figures [--set algo.fastslam2.estimate_detection_rate=true]`.
+// --hide-landmark-ids --no-figures [--set algo.fastslam2.estimate_detection_rate=false]`.
 TEST(VictoriaParkAssociation, FastSlamCountsMissesByTheDetectionRate) {
   const std::string path = testing::PublicDataFile(SLAMBOX_SOURCE_DIR, "landmark/victoria_park/islsjf/VicPark_clean_data.txt");
   if (path.empty()) GTEST_SKIP() << "landmark/victoria_park/islsjf/VicPark_clean_data.txt not found; set SLAMBOX_DATA";
   Stream hidden = ReadVictoriaPark(path);
+  ASSERT_TRUE(hidden.header.sensors.landmarks);
+  EXPECT_FALSE(hidden.header.sensors.landmarks->detection_prob_known);
   const std::vector<std::vector<int>> ids = HideLandmarkIds(hidden);
-  double agreement[2] = {0.0, 0.0};
-  for (int rate = 0; rate < 2; ++rate) {
-    const Estimate e =
-        Replay(*FindModule("fastslam2").create({{"estimate_detection_rate", rate ? "true" : "false"}}), hidden);
+  double agreement[2] = {0.0, 0.0};  // Thrun's counter, the default
+  for (int k = 0; k < 2; ++k) {
+    const ParamOverrides params = k == 0 ? ParamOverrides{{"estimate_detection_rate", "false"}} : ParamOverrides{};
+    const Estimate e = Replay(*FindModule("fastslam2").create(params), hidden);
     const AssociationAgreement r = ScoreAssociation(ids, e.observation_assignments);
     ASSERT_TRUE(r.agreement);
-    agreement[rate] = *r.agreement;
-    std::printf("fastslam2, estimate_detection_rate=%d: agreement %.4f (%lld duplicates); %zu landmarks\n", rate,
-                *r.agreement, static_cast<long long>(r.duplicates), e.landmarks.size());
+    agreement[k] = *r.agreement;
+    std::printf("fastslam2, %s: agreement %.4f (%lld duplicates); %zu landmarks\n",
+                k == 0 ? "estimate_detection_rate=false" : "defaults", *r.agreement,
+                static_cast<long long>(r.duplicates), e.landmarks.size());
   }
   EXPECT_LT(agreement[0], 0.5);
   EXPECT_GE(agreement[1], 0.85);

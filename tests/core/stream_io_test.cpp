@@ -14,6 +14,7 @@
 #include <zlib.h>
 
 #include "core/error.hpp"
+#include "core/json_io.hpp"
 #include "tests/support/slambox_cli.hpp"
 #include "tests/support/synthetic_stream.hpp"
 
@@ -24,7 +25,7 @@ Stream SmallStream() {
   testing::SyntheticOptions o;
   o.path = {{0, 0}, {3, 0}, {3, 2}};
   o.sensors.odometry = OdometryConfig{};
-  o.sensors.landmarks = LandmarkSensorConfig{};
+  o.sensors.landmarks = LandmarkSensorConfig{.detection_prob_known = false};
   o.sensors.lidar = LidarConfig{.beams = 36, .range_max_m = 8};
   o.sensors.gyro = GyroConfig{.rate_hz = 25, .sigma_dps = 0.2, .bias_dps = -0.1};
   World w;
@@ -76,6 +77,7 @@ TEST(StreamIo, FileRoundTripIsBitIdentical) {
   EXPECT_EQ(r.header.scenario_yaml, s.header.scenario_yaml);
   EXPECT_EQ(r.header.sensors.lidar->beams, 36);
   EXPECT_EQ(r.header.sensors.gyro->bias_dps, -0.1);
+  EXPECT_FALSE(r.header.sensors.landmarks->detection_prob_known);
   EXPECT_EQ(r.header.world.movers.at(0).radius_m, 0.3);
   for (size_t i = 0; i < s.events.size(); ++i) ASSERT_EQ(r.events[i].index(), s.events[i].index());
   for (size_t i = 0; i < s.groundtruth.size(); ++i)
@@ -118,6 +120,14 @@ TEST(StreamIo, AFileWrittenInChunksIsTheSerializationAndItsChecksumIsCrc32) {
   const std::uint64_t crc = crc32_z(0, reinterpret_cast<const Bytef*>(bytes.data()), bytes.size() - 8);
   EXPECT_EQ(LittleEndianU64(bytes, bytes.size() - 8), crc);
   EXPECT_EQ(SerializeStream(ReadStream(path)), expected);
+}
+
+// A header written before detection_prob_known existed states its P_D (the default).
+TEST(StreamIo, HeadersWithoutDetectionProbKnownStateTheirPd) {
+  nlohmann::json j = ToJson(SmallStream().header.sensors);
+  ASSERT_FALSE(SensorSuiteFromJson(j).landmarks->detection_prob_known);
+  j.at("landmarks").erase("detection_prob_known");
+  EXPECT_TRUE(SensorSuiteFromJson(j).landmarks->detection_prob_known);
 }
 
 TEST(StreamIo, VersionOneFilesAreStillRead) {

@@ -179,9 +179,11 @@ TEST(Scenario, ShowThenLoadRoundTripsExactly) {
   // Values without a short decimal form, a kidnap and a gyro survive too.
   const Scenario a = LoadScenario("loop", {"robot.radius_m=0.30000000000000004", "sensors.lidar.sigma_range_m=1e-7",
                                            "robot.kidnap={at_s: 60.5, to: {x: 20, y: 5.5, theta_deg: -33.3}}",
-                                           "sensors.gyro={rate_hz: 100, bias_dps: 0.1}", "duration_s=123.456"});
+                                           "sensors.gyro={rate_hz: 100, bias_dps: 0.1}", "duration_s=123.456",
+                                           "sensors.landmarks.detection_prob_known=false"});
   const Scenario b = LoadScenario(dir.Write("odd.yaml", ScenarioToYaml(a)));
   testing::ExpectSameScenario(a, b);
+  EXPECT_FALSE(b.sensors.landmarks->detection_prob_known);
   EXPECT_EQ(b.robot.radius_m, 0.1 + 0.2);
 }
 

@@ -84,7 +84,7 @@ inline void ExpectSameScenario(const Scenario& a, const Scenario& b) {
     EXPECT_TRUE(l.rate_hz == m.rate_hz && l.range_max_m == m.range_max_m && l.fov_deg == m.fov_deg &&
                 l.sigma_range_m == m.sigma_range_m && l.sigma_bearing_deg == m.sigma_bearing_deg &&
                 l.known_ids == m.known_ids && l.detection_prob == m.detection_prob &&
-                l.clutter_per_scan == m.clutter_per_scan);
+                l.detection_prob_known == m.detection_prob_known && l.clutter_per_scan == m.clutter_per_scan);
   }
   ASSERT_EQ(s.gyro.has_value(), t.gyro.has_value());
   if (s.gyro) {

@@ -47,6 +47,17 @@ Stream WithClutter(Stream s, double mean_per_scan, std::uint64_t seed) {
   return s;
 }
 
+// Drops each detection with probability 1 - keep: a detector whose real P_D is `keep`
+// while the header still states 1.
+Stream WithMisses(Stream s, double keep, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (SensorEvent& ev : s.events)
+    if (auto* scan = std::get_if<LandmarkEvent>(&ev))
+      std::erase_if(scan->observations, [&](const LandmarkObservation&) { return u(rng) >= keep; });
+  return s;
+}
+
 double AteRmse(const Estimate& e, const Stream& s) {
   double sum = 0;
   for (const PoseEstimate& p : e.trajectory) {
@@ -210,6 +221,8 @@ TEST(FastSlamModule, BadConfigurationIsAnInputError) {
   EXPECT_THROW(info.create({{"trajectory", "median"}}), InputError);
   EXPECT_THROW(info.create({{"particles", "-3"}}), InputError);
   EXPECT_THROW(info.create({{"no_such_field", "1"}}), InputError);
+  EXPECT_THROW(info.create({{"estimate_detection_rate", "sometimes"}}), InputError);
+  for (const char* use : {"auto", "true", "false"}) EXPECT_NO_THROW(info.create({{"estimate_detection_rate", use}}));
   for (const ParamInfo& p : info.params()) {
     if (p.name == "particles") { EXPECT_EQ(p.default_value, "50"); }
   }
@@ -220,6 +233,35 @@ TEST(FastSlamModule, BadConfigurationIsAnInputError) {
   no_landmarks.sensors.odometry = OdometryConfig{};
   FastSlam f(FastSlamConfig{}, false);
   EXPECT_THROW(f.Start(no_landmarks), InputError);
+}
+
+// estimate_detection_rate=auto measures the rate only where the stream does not state its
+// P_D (detection_prob_known false, as the converters of real logs write): the estimate is
+// then `true`'s, and where the header states P_D it is `false`'s. The two differ on this
+// stream, whose detector misses 40 % of what its header promises.
+TEST(FastSlamModule, AutoDetectionRateFollowsWhetherTheStreamStatesItsPd) {
+  Stream s = WithMisses(MakeStream(3, false, 1), 0.6, 7);
+  auto run = [&](DetectionRateUse use) {
+    FastSlamConfig c;
+    c.particles = 20;
+    c.estimate_detection_rate = use;
+    return RunModule<FastSlam>(s, c, true);
+  };
+  auto same = [](const Estimate& a, const Estimate& b) {
+    if (a.trajectory.size() != b.trajectory.size() || a.landmarks.size() != b.landmarks.size()) return false;
+    for (size_t i = 0; i < a.trajectory.size(); ++i)
+      if (a.trajectory[i].pose.vector() != b.trajectory[i].pose.vector()) return false;
+    for (size_t i = 0; i < a.landmarks.size(); ++i)
+      if (a.landmarks[i].position != b.landmarks[i].position) return false;
+    return true;
+  };
+  ASSERT_TRUE(s.header.sensors.landmarks->detection_prob_known);  // the default
+  const Estimate on = run(DetectionRateUse::kAlways), off = run(DetectionRateUse::kNever);
+  EXPECT_FALSE(same(on, off));
+  EXPECT_TRUE(same(run(DetectionRateUse::kAuto), off));
+  s.header.sensors.landmarks->detection_prob_known = false;
+  EXPECT_TRUE(same(run(DetectionRateUse::kAuto), on));
+  EXPECT_TRUE(same(run(DetectionRateUse::kNever), off));
 }
 
 // ATE [m] with one false detection per scan, declared in the stream header (seed 31;
