@@ -99,6 +99,7 @@ TEST(RawlogReader, SensoryFrameLayoutWithMountedSensors) {
   EXPECT_EQ(o.id, 7);
   ASSERT_TRUE(log.landmark_sensor.has_value());
   EXPECT_TRUE(log.landmark_sensor->known_ids);
+  EXPECT_FALSE(log.landmark_sensor->detection_prob_known);  // CObservationBearingRange does not carry it
   EXPECT_NEAR(log.landmark_sensor->sigma_range_m, 0.05, 1e-7);
   EXPECT_NEAR(log.landmark_sensor->range_max_m, 12.0, 1e-6);
 }
