@@ -85,7 +85,7 @@ TEST(VictoriaParkAssociation, FastSlamCountsMissesByTheDetectionRate) {
   ASSERT_TRUE(hidden.header.sensors.landmarks);
   EXPECT_FALSE(hidden.header.sensors.landmarks->detection_prob_known);
   const std::vector<std::vector<int>> ids = HideLandmarkIds(hidden);
-  double agreement[2] = {0.0, 0.0};  // Thrun's counter, the default
+  double agreement[2] = {0.0, 0.0};  // Thrun's counter (=false), then the defaults
   for (int k = 0; k < 2; ++k) {
     const ParamOverrides params = k == 0 ? ParamOverrides{{"estimate_detection_rate", "false"}} : ParamOverrides{};
     const Estimate e = Replay(*FindModule("fastslam2").create(params), hidden);
