@@ -22,14 +22,6 @@ Eigen::Matrix2d InnovationCovariance(const EkfSlamState& s, int index, const Eig
          p.J_z_landmark * P_mm * p.J_z_landmark.transpose() + R;
 }
 
-double ExpectedInGate(const Eigen::Matrix2d& C, double gate_chi2, double density_per_m2) {
-  return density_per_m2 * M_PI * gate_chi2 * std::sqrt(std::max(0.0, C.determinant()));
-}
-
-double ExpectedFalseInGate(const Eigen::Matrix2d& S, double range_m, double gate_chi2, double density_per_m2) {
-  return ExpectedInGate(S, gate_chi2, density_per_m2) * range_m;
-}
-
 double MahalanobisSquared(const EkfSlamState& s, int index, const Eigen::Vector2d& z, const Eigen::Matrix2d& R) {
   const Eigen::Vector2d nu = Innovation(z, PredictObservation(s.Pose(), s.Landmark(index)).z);
   return nu.dot(InnovationCovariance(s, index, R).ldlt().solve(nu));

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "slam/ekf_slam_filter.hpp"
+#include "slam/landmark_existence.hpp"  // ExpectedInGate, ExpectedFalseInGate
 
 namespace slambox {
 
@@ -33,17 +34,6 @@ struct Association {
 
 /// Innovation covariance S = H P H^T + R of observing landmark `index` of `state`.
 Eigen::Matrix2d InnovationCovariance(const EkfSlamState& state, int index, const Eigen::Matrix2d& R);
-
-/// Expected number of points of a field of spatial density `density_per_m2` inside the
-/// gate d^2 < gate_chi2 of a planar Gaussian with covariance C: the gate is an ellipse of
-/// area pi gate_chi2 sqrt(det C).
-double ExpectedInGate(const Eigen::Matrix2d& C, double gate_chi2, double density_per_m2);
-
-/// Expected number of false detections (spatial density `density_per_m2`) inside the gate
-/// d^2 < gate_chi2 of a predicted observation at `range_m` with innovation covariance S:
-/// the gate is an ellipse of area pi gate_chi2 sqrt(det S) in (range, bearing) and, as
-/// dx dy = r dr dbearing, r times that in the plane.
-double ExpectedFalseInGate(const Eigen::Matrix2d& S, double range_m, double gate_chi2, double density_per_m2);
 
 /// d^2 of observation z against landmark `index` of `state`.
 double MahalanobisSquared(const EkfSlamState& state, int index, const Eigen::Vector2d& z, const Eigen::Matrix2d& R);

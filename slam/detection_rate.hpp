@@ -14,8 +14,9 @@ namespace slambox {
 struct DetectionRate {
   double range_max_m = 1.0;
   double prior = 1.0;        ///< the sensor's configured detection probability (one pseudo-scan)
-  std::vector<double> seen;  ///< per band: scans in which an expected landmark was detected
-  std::vector<double> expected;  ///< per band: scans in which a landmark was expected in view
+  /// One band by default (DetectionProbability is then `prior` until counted).
+  std::vector<double> seen = {0.0};      ///< per band: scans in which an expected landmark was detected
+  std::vector<double> expected = {0.0};  ///< per band: scans in which a landmark was expected in view
 };
 
 /// `bands` equal range bands over [0, range_max_m); `prior` weighs as one scan per band.

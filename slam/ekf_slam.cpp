@@ -19,12 +19,6 @@ const EnumNames<EkfAssociation>& EkfAssociationNames() {
   return names;
 }
 
-const EnumNames<ExistenceRule>& ExistenceRuleNames() {
-  static const EnumNames<ExistenceRule> names = {{ExistenceRule::kSequentialTest, "sprt"},
-                                                 {ExistenceRule::kCounts, "counts"}};
-  return names;
-}
-
 void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("association", c.association, EkfAssociationNames(),
          "data association: auto (known ids if the sensor has them, else jcbb), known, nn, jcbb");

@@ -46,14 +46,9 @@ enum class EkfAssociation { kAuto, kKnown, kNearestNeighbour, kJcbb };
 /// auto, known, nn, jcbb.
 const EnumNames<EkfAssociation>& EkfAssociationNames();
 
-/// Unknown ids: how a landmark is confirmed and removed. Sequential test: Wald's SPRT of
-/// "real, seen with the measured P_D" against "clutter reappearing in its gate"
-/// (slam/landmark_existence.hpp); counts: confirm_sightings / tentative_max_misses /
-/// tentative_max_age_s for tentative landmarks, the existence count for confirmed ones.
-/// Chosen separately for tentative and confirmed landmarks.
-enum class ExistenceRule { kSequentialTest, kCounts };
-/// sprt, counts.
-const EnumNames<ExistenceRule>& ExistenceRuleNames();
+// ExistenceRule (slam/landmark_existence.hpp), for ekf-slam: counts are confirm_sightings /
+// tentative_max_misses / tentative_max_age_s for tentative landmarks, the existence count
+// for confirmed ones; chosen separately for tentative and confirmed landmarks.
 
 struct EkfSlamConfig {
   EkfAssociation association = EkfAssociation::kAuto;

@@ -23,13 +23,7 @@ std::vector<double> EkfSlam::ExpectedClutterInGates() const {
 }
 
 double EkfSlam::NewLandmarkPriorLogRatio() const {
-  // Of the births_ detections that started a landmark in scan_ + 1 scans, clutter_per_scan
-  // per scan are expected to be clutter (the gates of mapped landmarks take a negligible
-  // share of the footprint); the rest are real. Laplace's rule keeps the fraction inside
-  // (0, 1): a stream of clutter only drives the prior odds of a new landmark towards 0.
-  const double n = births_, clutter = clutter_per_scan_ * (scan_ + 1);
-  const double p_real = std::clamp((n - clutter + 1.0) / (n + 2.0), 1.0 / (n + 2.0), (n + 1.0) / (n + 2.0));
-  return std::log(p_real / (1.0 - p_real));
+  return slambox::NewLandmarkPriorLogRatio(births_, scan_ + 1.0, clutter_per_scan_);
 }
 
 double EkfSlam::NewLandmarkDensity() const {

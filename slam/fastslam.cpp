@@ -38,6 +38,15 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
          "reported landmarks, the sensor's detection_prob as prior) instead of 1; auto: where the stream does "
          "not state its P_D (detection_prob_known false: converted logs)");
   b.Bind("detection_rate_bands", c.detection_rate_bands, "bands", "range bands of the detection probability estimate");
+  static const EnumNames<FastSlamExistence> kExistenceNames = {{FastSlamExistence::kAuto, "auto"},
+                                                                {FastSlamExistence::kCounts, "counts"},
+                                                                {FastSlamExistence::kSequentialTest, "sprt"}};
+  b.Bind("existence", c.existence, kExistenceNames,
+         "unknown ids: counts (+1 per sighting, -1 or -P_D per miss in view) | sprt (Wald's test of real against "
+         "clutter in the pairing's gate, as ekf-slam's; reports landmarks it confirmed) | auto: sprt where the "
+         "stream does not state its P_D (detection_prob_known false: converted logs), else counts");
+  b.Bind("existence_error_prob", c.existence_error_prob, "-",
+         "existence=sprt: probability of confirming a phantom and of deleting a real landmark (Wald's bounds)");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
   static const EnumNames<FastSlamTrajectory> kTrajectoryNames = {{FastSlamTrajectory::kBest, "best"},
@@ -62,6 +71,8 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
   if (!(c.neff_threshold >= 0 && c.neff_threshold <= 1)) fail("neff_threshold", "must lie in [0, 1]", "e.g. 0.5");
   if (c.detection_rate_bands < 1 || c.detection_rate_bands > 1000)
     fail("detection_rate_bands", "needs 1 .. 1000 bands", "e.g. 10");
+  if (!(c.existence_error_prob > 0 && c.existence_error_prob < 0.5))
+    fail("existence_error_prob", "must lie in (0, 0.5)", "e.g. 0.01");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
   if (c.snapshot_period_s < 0) fail("snapshot_period_s", "must not be negative", "0 disables snapshots");
   if (c.visibility_margin_m < 0 || c.candidate_margin_m < 0) fail("visibility_margin_m", "margins must not be negative", "e.g. 0.5");
@@ -97,11 +108,19 @@ void FastSlam::Start(const StreamHeader& header) {
   update_.range_max_m = lm.range_max_m;
   update_.half_fov_rad = 0.5 * lm.fov_deg * M_PI / 180.0;
   clutter_per_scan_ = lm.clutter_per_scan;
+  const bool pd_stated = lm.detection_prob_known;
   update_.estimate_detection_rate =
       config_.estimate_detection_rate == DetectionRateUse::kAlways ||
-      (config_.estimate_detection_rate == DetectionRateUse::kAuto && !lm.detection_prob_known);
+      (config_.estimate_detection_rate == DetectionRateUse::kAuto && !pd_stated);
   update_.detection = MakeDetectionRate(lm.range_max_m, config_.detection_rate_bands, lm.detection_prob);
   update_.confirmed_counter = config_.report_min_counter;
+  update_.existence = config_.existence == FastSlamExistence::kSequentialTest ||
+                              (config_.existence == FastSlamExistence::kAuto && !pd_stated)
+                          ? ExistenceRule::kSequentialTest
+                          : ExistenceRule::kCounts;
+  update_.wald = MakeWaldThresholds(config_.existence_error_prob, config_.existence_error_prob);
+  update_.clutter_density_per_m2 =
+      lm.clutter_per_scan / (update_.range_max_m * update_.range_max_m * update_.half_fov_rad);
   births_ = 0.0;
   update_.visibility_margin_m = config_.visibility_margin_m;
   update_.candidate_margin_m = config_.candidate_margin_m;
@@ -152,6 +171,7 @@ void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
   if (config_.new_landmark_p0 == NewLandmarkP0::kDensity && !update_.known_ids)
     update_.fake_density_per_m2 = FakeDetectionDensity(
         clutter_per_scan_, births_, scan_, update_.range_max_m * update_.range_max_m * update_.half_fov_rad);
+  update_.new_log_ratio = NewLandmarkPriorLogRatio(births_, scan_ + 1.0, clutter_per_scan_);
   double created = 0.0;
   const int best = BestParticle();
   std::vector<std::pair<double, bool>> expected;  // the best particle's, for the detection rate
@@ -319,7 +339,7 @@ Estimate FastSlam::Finish() {
       estimate_.observation_assignments.push_back(
           {(*it)->scan, static_cast<int>(i), (*it)->landmark[i], (*it)->created[i] != 0});
   ForEachLandmark(best.map, [&](int key, const LandmarkGaussian& lm) {
-    if (!update_.known_ids && lm.counter < config_.report_min_counter) return;
+    if (!update_.known_ids && !update_.Confirmed(lm)) return;
     estimate_.landmarks.push_back({key, lm.mean, lm.covariance, true});
   });
   return std::move(estimate_);

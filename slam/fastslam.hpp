@@ -36,6 +36,10 @@ enum class NewLandmarkP0 { kDensity, kGate };
 /// kAuto where the stream does not state its P_D (LandmarkSensorConfig::detection_prob_known
 /// false: converted logs), kAlways, kNever. Names "auto", "true", "false".
 enum class DetectionRateUse { kAuto, kAlways, kNever };
+/// How landmarks are confirmed and removed with unknown ids (FastSlamConfig::existence):
+/// kAuto as DetectionRateUse::kAuto (the test where the stream does not state its P_D),
+/// else the counters or the sequential test (ExistenceRule). Names "auto", "counts", "sprt".
+enum class FastSlamExistence { kAuto, kCounts, kSequentialTest };
 
 struct FastSlamConfig {
   int particles = 100;  ///< M
@@ -61,6 +65,14 @@ struct FastSlamConfig {
   /// stated one is trusted (in simulation the rate costs: slam/README_fastslam.md).
   DetectionRateUse estimate_detection_rate = DetectionRateUse::kAuto;
   int detection_rate_bands = 10;     ///< [bands] range bands of that estimate over [0, range_max)
+  /// Unknown ids: the existence of a landmark by the counters above (Thrun 13.2) or by
+  /// Wald's sequential test of "real" against "clutter in its gate", as ekf-slam's
+  /// (ParticleUpdateOptions::existence); the test confirms and deletes at the error
+  /// probabilities existence_error_prob (alpha = beta). auto: the test where the stream
+  /// does not state its P_D (converted logs: measured in slam/README_fastslam.md), the
+  /// counters where it does (the simulator: the test costs there, same section).
+  FastSlamExistence existence = FastSlamExistence::kAuto;
+  double existence_error_prob = 0.01;
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
   FastSlamTrajectory trajectory = FastSlamTrajectory::kBest;  ///< what goes into Estimate::trajectory
 };

@@ -1,5 +1,6 @@
 #include "slam/fastslam_particle.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -19,6 +20,7 @@ struct Association {
   std::vector<int> key;         // per observation: a landmark key, kNewLandmark or kIgnored
   std::vector<int> candidates;  // landmarks in range before the update (for the counters)
   std::vector<double> log_p0;   // per observation (unknown ids): log p0 at its range
+  std::vector<PredictedMeasurement> predicted;  // per candidate, before the update (existence test)
 };
 
 // Maximum-likelihood correspondences, mutually exclusive within a scan: pairs are taken
@@ -44,8 +46,10 @@ Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector
   // pose covariance), or the predictive likelihood over the proposal prior (2.0,
   // Montemerlo 2003).
   const PoseProposal prior{p.pose, p.pose_covariance};
+  a.predicted.reserve(a.candidates.size());
   for (size_t c = 0; c < a.candidates.size(); ++c) {
-    const PredictedMeasurement predicted = PredictMeasurement(prior, *FindLandmark(p.map, a.candidates[c]), o.R);
+    const PredictedMeasurement& predicted =
+        a.predicted.emplace_back(PredictMeasurement(prior, *FindLandmark(p.map, a.candidates[c]), o.R));
     for (size_t j = 0; j < z.size(); ++j) {
       const double ll = LogLikelihood(predicted, z[j]);
       if (ll >= a.log_p0[j]) pairs.emplace_back(-ll, static_cast<int>(j), static_cast<int>(c));
@@ -62,22 +66,54 @@ Association Associate(const FastSlamParticle& p, const std::vector<Eigen::Vector
   return a;
 }
 
+// One trial of the sequential existence test for a landmark predicted at `predicted` (range
+// r): its gate is where N(z; z_hat, L) >= p0, d^2 <= g = 2 (log N(z_hat; z_hat, L) - log p0),
+// which holds a real detection with P_G = P[chi2(2) <= g] and mu clutter detections
+// (ExpectedFalseInGate).
+double ExistenceTrial(const PredictedMeasurement& predicted, bool detected, const ParticleUpdateOptions& o) {
+  const double r = predicted.z_hat.x();
+  const double g = std::max(0.0, 2.0 * (predicted.log_normalizer - o.LogP0(r)));
+  const double p_gate = -std::expm1(-0.5 * g);  // the chi-square CDF with 2 dof
+  const double mu =
+      ExpectedFalseInGate(predicted.L_inverse.inverse(), std::max(r, 0.0), g, o.clutter_density_per_m2);
+  const double p_detect = DetectionProbability(o.detection, r);
+  return detected ? DetectedLogRatio(p_detect, p_gate, mu) : MissedLogRatio(p_detect, p_gate, mu);
+}
+
 // Thrun 13.2 lines 25-31: a landmark in range that should have been seen but was not
 // loses one count (with an estimated detection rate: the detection that was expected at
-// its range, P_D(r)); below zero it is discarded. With the rate, confirmed landmarks in
-// view are listed in `expected` with whether they were seen, to estimate it.
-int ApplyExistenceCounters(FastSlamParticle& p, const Association& a, const ParticleUpdateOptions& o,
-                           std::vector<std::pair<double, bool>>& expected) {
+// its range, P_D(r)); below zero it is discarded. With the sequential test (ExistenceRule)
+// each candidate seen adds a trial's log ratio wherever it was, each one in view and not
+// seen a miss's, and it is discarded at Wald's lower bound. With the rate, confirmed
+// landmarks in view are listed in `expected` with whether they were seen, to estimate it.
+int ApplyExistence(FastSlamParticle& p, const Association& a, const ParticleUpdateOptions& o,
+                   std::vector<std::pair<double, bool>>& expected) {
   std::vector<int> matched;
   for (int k : a.key)
     if (k >= 0) matched.push_back(k);
   std::sort(matched.begin(), matched.end());
+  const bool sprt = o.existence == ExistenceRule::kSequentialTest;
   int discarded = 0;
-  for (int key : a.candidates) {
+  for (size_t c = 0; c < a.candidates.size(); ++c) {
+    const int key = a.candidates[c];
     const bool seen = std::binary_search(matched.begin(), matched.end(), key);
     LandmarkGaussian lm = *FindLandmark(p.map, key);
     const Eigen::Vector2d z = PredictObservation(p.pose, lm.mean).z;
-    if (z.x() > o.range_max_m - o.visibility_margin_m || std::abs(z.y()) > o.half_fov_rad) continue;
+    const bool in_view = z.x() <= o.range_max_m - o.visibility_margin_m && std::abs(z.y()) <= o.half_fov_rad;
+    if (sprt) {
+      // Confirmed before this scan's trial.
+      if (in_view && o.estimate_detection_rate && o.Confirmed(lm)) expected.emplace_back(z.x(), seen);
+      if (!seen && !in_view) continue;
+      lm.log_ratio += ExistenceTrial(a.predicted[c], seen, o);
+      if (lm.log_ratio <= o.wald.log_delete) {
+        EraseLandmark(p.map, key);
+        ++discarded;
+      } else {
+        SetLandmark(p.map, key, lm);
+      }
+      continue;
+    }
+    if (!in_view) continue;
     // Confirmed before this scan (a sighting has already added its count).
     if (o.estimate_detection_rate && lm.counter - (seen ? 1.0 : 0.0) >= o.confirmed_counter)
       expected.emplace_back(z.x(), seen);
@@ -126,14 +162,16 @@ ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<Land
       ++s.matched;
     } else {  // a new landmark: w_{N+1} = p0 (constant over particles with known ids)
       const int new_key = o.known_ids ? scan[j].id : p.next_key++;
-      SetLandmark(p.map, new_key, InitializeLandmark(p.pose, z[j], o.R));
+      LandmarkGaussian created = InitializeLandmark(p.pose, z[j], o.R);
+      created.log_ratio = o.new_log_ratio;
+      SetLandmark(p.map, new_key, created);
       s.landmark_of[j] = new_key;
       s.creates[j] = 1;
       if (!o.known_ids) s.log_weight_factor += a.log_p0[j];
       ++s.created;
     }
   }
-  if (!o.known_ids) s.discarded = ApplyExistenceCounters(p, a, o, s.expected);
+  if (!o.known_ids) s.discarded = ApplyExistence(p, a, o, s.expected);
   return s;
 }
 

@@ -11,6 +11,7 @@
 
 #include "core/stream.hpp"
 #include "slam/detection_rate.hpp"
+#include "slam/landmark_existence.hpp"
 #include "slam/landmark_tree.hpp"
 #include "slam/particle_path.hpp"
 
@@ -73,6 +74,22 @@ struct ParticleUpdateOptions {
   bool estimate_detection_rate = false;
   DetectionRate detection;
   double confirmed_counter = 10.0;  ///< landmarks whose counter reached this measure the rate
+  /// Existence by Wald's sequential test instead of the counters: a sighting adds
+  /// DetectedLogRatio, a miss in view MissedLogRatio, with P_D at the landmark's range (the
+  /// estimated rate, or the stated one), P_G and the clutter mu of the pairing's own gate
+  /// (where N(z; z_hat, L) >= p0); new landmarks start at `new_log_ratio`, are confirmed
+  /// (reported, counted for the rate) at wald.log_confirm and removed at wald.log_delete.
+  ExistenceRule existence = ExistenceRule::kCounts;
+  WaldThresholds wald;
+  double new_log_ratio = 0.0;           ///< log prior odds of a new landmark (NewLandmarkPriorLogRatio)
+  double clutter_density_per_m2 = 0.0;  ///< [1/m^2] clutter_per_scan over the footprint
+  /// A landmark counted as confirmed (reported, measures the rate) under the rule in use.
+  bool Confirmed(const LandmarkGaussian& lm) const {
+    // Under the test the counter counts sightings (never decreased): confirmed by the test
+    // and as many sightings as the counters need, so that a duplicate of a real landmark
+    // (real detections, which the test calls real at once) is not reported after two.
+    return lm.counter >= confirmed_counter && (existence == ExistenceRule::kCounts || lm.log_ratio >= wald.log_confirm);
+  }
 };
 
 struct ParticleUpdateSummary {

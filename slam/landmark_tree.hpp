@@ -22,6 +22,9 @@ struct LandmarkGaussian {
   /// +1 per sighting, minus the detection probability at its range per miss in view
   /// (1 without an estimated rate); gone below 0.
   double counter = 1.0;
+  /// With the sequential existence test instead: the log likelihood ratio "real" against
+  /// "clutter" of its trials so far (slam/landmark_existence.hpp).
+  double log_ratio = 0.0;
 };
 
 struct LandmarkTreeNode {

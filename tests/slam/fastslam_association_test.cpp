@@ -187,6 +187,61 @@ TEST(FastSlamAssociation, MissesCostTheDetectionProbabilityAtTheirRange) {
   EXPECT_FALSE(s.expected[0].second);
 }
 
+// existence=sprt (ParticleUpdateOptions::existence): one scan from the origin sees the
+// landmark at (6, 0), misses the one at (4, 0) in full view and starts a new one. Each
+// trial's gate is where N(z; z_hat, L) >= p0: with zero pose covariance and landmark
+// covariance 0.01 I, L = diag(0.01 + s_r^2, 0.01 / r^2 + s_b^2) (range row (1, 0), bearing
+// row (0, 1 / r) along +x), g = 2 (log N(z_hat; z_hat, L) - log p0), P_G = 1 - exp(-g / 2),
+// mu = density pi g sqrt(det L) r; a sighting adds log(P_D P_G / (1 - exp(-mu))), a miss
+// log((1 - P_D P_G) / exp(-mu)). Counters count sightings only; the missed landmark goes
+// at its third miss (0 -> -1.60 -> -3.19 -> -4.79 <= log(0.01 / 0.99) = -4.60).
+TEST(FastSlamAssociation, SequentialTestWeighsTrialsByDetectionAndClutterInTheGate) {
+  ParticleUpdateOptions o = UnknownIds();
+  o.log_p0 = -10;
+  o.existence = ExistenceRule::kSequentialTest;
+  o.wald = MakeWaldThresholds(0.01, 0.01);
+  o.detection = MakeDetectionRate(10.0, 1, 0.8);  // not estimated: P_D 0.8 at every range
+  o.clutter_density_per_m2 = 0.01;
+  o.new_log_ratio = 1.5;
+  o.confirmed_counter = 6;
+  FastSlamParticle p = ParticleWith({{4, 0}, {6, 0}}, 5);
+  LandmarkGaussian earlier = *FindLandmark(p.map, 1);
+  earlier.log_ratio = 1.0;  // a sighting before
+  SetLandmark(p.map, 1, earlier);
+  auto trial = [&](double r, bool detected) {
+    const double det_L = (0.01 + 0.05 * 0.05) * (0.01 / (r * r) + 0.02 * 0.02);
+    const double g = 2.0 * (-std::log(2 * M_PI) - 0.5 * std::log(det_L) - o.log_p0);
+    const double p_gate = 1.0 - std::exp(-0.5 * g), mu = 0.01 * M_PI * g * std::sqrt(det_L) * r;
+    return detected ? std::log(0.8 * p_gate / (1.0 - std::exp(-mu))) : std::log((1.0 - 0.8 * p_gate) / std::exp(-mu));
+  };
+  std::mt19937_64 rng(1);
+  ParticleUpdateSummary s = UpdateParticle(p, {Obs(6, 0), Obs(3, -1.0)}, o, rng);
+  EXPECT_EQ(s.matched, 1);
+  EXPECT_EQ(s.created, 1);
+  EXPECT_EQ(s.discarded, 0);
+  EXPECT_NEAR(FindLandmark(p.map, 1)->log_ratio, 1.0 + trial(6.0, true), 1e-9);
+  EXPECT_DOUBLE_EQ(FindLandmark(p.map, 1)->counter, 6.0);  // 5 + its sighting
+  EXPECT_NEAR(FindLandmark(p.map, 0)->log_ratio, trial(4.0, false), 1e-9);
+  EXPECT_DOUBLE_EQ(FindLandmark(p.map, 0)->counter, 5.0);  // a miss leaves the sightings
+  EXPECT_DOUBLE_EQ(FindLandmark(p.map, 2)->log_ratio, 1.5);
+  EXPECT_DOUBLE_EQ(FindLandmark(p.map, 2)->counter, 1.0);
+  // Confirmed: enough sightings and the test's upper bound, log(0.99 / 0.01) = 4.60
+  // (1 + 3.96, where the first sighting alone would not be).
+  EXPECT_GT(1.0 + trial(6.0, true), o.wald.log_confirm);
+  EXPECT_LT(trial(6.0, true), o.wald.log_confirm);
+  EXPECT_TRUE(o.Confirmed(*FindLandmark(p.map, 1)));
+  EXPECT_FALSE(o.Confirmed(*FindLandmark(p.map, 0)));  // 5 sightings, a negative ratio
+  EXPECT_FALSE(o.Confirmed(*FindLandmark(p.map, 2)));
+  s = UpdateParticle(p, {Obs(6, 0), Obs(3, -1.0)}, o, rng);
+  EXPECT_EQ(s.discarded, 0);
+  EXPECT_NEAR(FindLandmark(p.map, 0)->log_ratio, 2 * trial(4.0, false), 1e-9);
+  s = UpdateParticle(p, {Obs(6, 0), Obs(3, -1.0)}, o, rng);
+  EXPECT_EQ(s.discarded, 1);
+  EXPECT_EQ(FindLandmark(p.map, 0), nullptr);
+  EXPECT_LT(3 * trial(4.0, false), o.wald.log_delete);
+  EXPECT_GT(2 * trial(4.0, false), o.wald.log_delete);
+}
+
 TEST(FastSlamAssociation, KnownIdsUseTheIdsAndIgnoreClutter) {
   ParticleUpdateOptions o = UnknownIds();
   o.known_ids = true;

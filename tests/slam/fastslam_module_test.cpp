@@ -235,6 +235,16 @@ TEST(FastSlamModule, BadConfigurationIsAnInputError) {
   EXPECT_THROW(f.Start(no_landmarks), InputError);
 }
 
+// The same trajectory and map, to the last bit.
+bool SameEstimate(const Estimate& a, const Estimate& b) {
+  if (a.trajectory.size() != b.trajectory.size() || a.landmarks.size() != b.landmarks.size()) return false;
+  for (size_t i = 0; i < a.trajectory.size(); ++i)
+    if (a.trajectory[i].pose.vector() != b.trajectory[i].pose.vector()) return false;
+  for (size_t i = 0; i < a.landmarks.size(); ++i)
+    if (a.landmarks[i].position != b.landmarks[i].position) return false;
+  return true;
+}
+
 // estimate_detection_rate=auto measures the rate only where the stream does not state its
 // P_D (detection_prob_known false, as the converters of real logs write): the estimate is
 // then `true`'s, and where the header states P_D it is `false`'s. The two differ on this
@@ -245,23 +255,36 @@ TEST(FastSlamModule, AutoDetectionRateFollowsWhetherTheStreamStatesItsPd) {
     FastSlamConfig c;
     c.particles = 20;
     c.estimate_detection_rate = use;
+    c.existence = FastSlamExistence::kCounts;  // the rate alone (the test: below)
     return RunModule<FastSlam>(s, c, true);
-  };
-  auto same = [](const Estimate& a, const Estimate& b) {
-    if (a.trajectory.size() != b.trajectory.size() || a.landmarks.size() != b.landmarks.size()) return false;
-    for (size_t i = 0; i < a.trajectory.size(); ++i)
-      if (a.trajectory[i].pose.vector() != b.trajectory[i].pose.vector()) return false;
-    for (size_t i = 0; i < a.landmarks.size(); ++i)
-      if (a.landmarks[i].position != b.landmarks[i].position) return false;
-    return true;
   };
   ASSERT_TRUE(s.header.sensors.landmarks->detection_prob_known);  // the default
   const Estimate on = run(DetectionRateUse::kAlways), off = run(DetectionRateUse::kNever);
-  EXPECT_FALSE(same(on, off));
-  EXPECT_TRUE(same(run(DetectionRateUse::kAuto), off));
+  EXPECT_FALSE(SameEstimate(on, off));
+  EXPECT_TRUE(SameEstimate(run(DetectionRateUse::kAuto), off));
   s.header.sensors.landmarks->detection_prob_known = false;
-  EXPECT_TRUE(same(run(DetectionRateUse::kAuto), on));
-  EXPECT_TRUE(same(run(DetectionRateUse::kNever), off));
+  EXPECT_TRUE(SameEstimate(run(DetectionRateUse::kAuto), on));
+  EXPECT_TRUE(SameEstimate(run(DetectionRateUse::kNever), off));
+}
+
+// existence=auto is the sequential test where the stream does not state its P_D, the
+// counters where it does; the two differ on this stream (a detector that misses 40 % of
+// what the header promises).
+TEST(FastSlamModule, AutoExistenceFollowsWhetherTheStreamStatesItsPd) {
+  Stream s = WithMisses(MakeStream(3, false, 1), 0.6, 7);
+  auto run = [&](FastSlamExistence rule) {
+    FastSlamConfig c;
+    c.particles = 20;
+    c.estimate_detection_rate = DetectionRateUse::kAlways;
+    c.existence = rule;
+    return RunModule<FastSlam>(s, c, true);
+  };
+  const Estimate counts = run(FastSlamExistence::kCounts), sprt = run(FastSlamExistence::kSequentialTest);
+  EXPECT_FALSE(SameEstimate(counts, sprt));
+  EXPECT_TRUE(SameEstimate(run(FastSlamExistence::kAuto), counts));
+  s.header.sensors.landmarks->detection_prob_known = false;
+  EXPECT_TRUE(SameEstimate(run(FastSlamExistence::kAuto), sprt));
+  EXPECT_TRUE(SameEstimate(run(FastSlamExistence::kCounts), counts));
 }
 
 // ATE [m] with one false detection per scan, declared in the stream header (seed 31;
@@ -291,6 +314,30 @@ TEST(FastSlamModule, ClutterIsFilteredByTheExistenceCounters) {
       EXPECT_EQ(m.duplicates, 0);
       EXPECT_EQ(m.spurious, 0);
     }
+  }
+}
+
+// The same stream with existence=sprt (Wald's test, as ekf-slam's; the rate off, as the
+// header states P_D): ATE [m] fastslam1, fastslam2, printed by the test.
+constexpr double kClutterSprtAte_m[2] = {0.0543, 0.0319};
+
+TEST(FastSlamModule, ClutterIsFilteredByTheSequentialTest) {
+  Stream s = WithClutter(MakeStream(31, false), 1.0, 99);
+  s.header.sensors.landmarks->clutter_per_scan = 1.0;
+  const double odo = AteRmse(RunModule<DeadReckoning>(s, DeadReckoningConfig{}), s);
+  for (bool fs2 : {false, true}) {
+    FastSlamConfig c;
+    c.particles = fs2 ? 50 : 100;
+    c.existence = FastSlamExistence::kSequentialTest;
+    const Estimate e = RunModule<FastSlam>(s, c, fs2);
+    const MapScore m = ScoreMap(e, s.header.world);
+    std::printf("fastslam%d with clutter, sequential test: ate %.4f (odometry %.3f) found %d duplicates %d spurious %d\n",
+                fs2 ? 2 : 1, AteRmse(e, s), odo, m.found, m.duplicates, m.spurious);
+    EXPECT_TRUE(NoWorseThanMeasured(AteRmse(e, s), kClutterSprtAte_m[fs2 ? 1 : 0])) << "fastslam" << (fs2 ? 2 : 1);
+    EXPECT_LT(AteRmse(e, s), 0.5 * odo);
+    EXPECT_EQ(m.found, 25);
+    EXPECT_EQ(m.duplicates, 0);
+    EXPECT_EQ(m.spurious, 0);
   }
 }
 
