@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/odometry_model.hpp"
 #include "slam/map_points.hpp"
+#include "slam/map_visibility.hpp"
 #include "slam/scan_points.hpp"
 
 namespace slambox {
@@ -18,6 +19,9 @@ void BindParams(IcpLocalizationConfig& c, ParamBinder& b) {
   b.Bind("max_correction_deg", c.max_correction_deg, "deg", "reject an ICP result turned farther than this from the prediction, or than 3 sigma if larger");
   b.Bind("info_cap_sigma_xy_m", c.info_cap_sigma_xy_m, "m", "covariance: no scan more certain than this (translation)");
   b.Bind("info_cap_sigma_theta_deg", c.info_cap_sigma_theta_deg, "deg", "covariance: ... (heading)");
+  b.Bind("visibility_margin_m", c.visibility_margin_m, "m",
+         "register to the map points visible from the predicted pose (walls occlude), within this margin behind "
+         "the nearest wall of their bearing; 0: the whole map");
 }
 
 IcpLocalization::IcpLocalization(const IcpLocalizationConfig& config)
@@ -31,6 +35,8 @@ IcpLocalization::IcpLocalization(const IcpLocalizationConfig& config)
   positive(config_.max_correction_deg, "max_correction_deg");
   positive(config_.info_cap_sigma_xy_m, "info_cap_sigma_xy_m");
   positive(config_.info_cap_sigma_theta_deg, "info_cap_sigma_theta_deg");
+  if (!(config_.visibility_margin_m >= 0))
+    throw InputError("--set algo.icp-localization.visibility_margin_m", 0, "must be >= 0", "e.g. 0.3; 0 uses the whole map");
 }
 
 void IcpLocalization::Start(const StreamHeader& header) {
@@ -40,6 +46,8 @@ void IcpLocalization::Start(const StreamHeader& header) {
                      "run it on a simulated scenario (a converted real log carries no map)");
   // Outlines sampled without noise: five neighbours give exact normals and keep corners sharp.
   map_ = MakeCloudTarget(std::move(points), {.normal_neighbors = 5, .build_kd_tree = true});
+  world_ = header.world;
+  range_max_m_ = header.sensors.lidar ? header.sensors.lidar->range_max_m : 30.0;
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
   pose_ = header.start_pose;
   covariance_.setZero();
@@ -82,14 +90,22 @@ void IcpLocalization::OnLaserScan(const LaserScanEvent& scan) {
   // 5 cm) a pair 0.5 m off weighs ~1e-4, so the very points that show a large error (a leg's
   // end wall) would have no say, and their direction would stay degenerate.
   wide.robust_scale_m = std::max(icp_.robust_scale_m, wide.max_correspondence_m);
+  // The map as seen from the prediction: the widest accepted correction and the gate farther.
+  IcpTarget visible;
+  if (config_.visibility_margin_m > 0) {
+    const MapVisibilitySetting seen{.range_max_m = range_max_m_ + max_correction_m + wide.max_correspondence_m,
+                                    .depth_margin_m = config_.visibility_margin_m};
+    visible = SubsetTarget(map_, VisibleMapPoints(world_, map_.points, pose_.translation(), seen));
+  }
+  const IcpTarget& target = config_.visibility_margin_m > 0 ? visible : map_;
   auto wide_then_fine = [&] {
-    return RegisterIcp(points.points, map_, RegisterIcp(points.points, map_, pose_, wide).T_target_source, icp_);
+    return RegisterIcp(points.points, target, RegisterIcp(points.points, target, pose_, wide).T_target_source, icp_);
   };
   IcpResult r;
   if (3.0 * sigma_xy_m > icp_.max_correspondence_m) {
     r = wide_then_fine();
   } else {
-    r = RegisterIcp(points.points, map_, pose_, icp_);
+    r = RegisterIcp(points.points, target, pose_, icp_);
     if (2 * r.num_inliers < static_cast<int>(points.points.size())) {
       IcpResult second = wide_then_fine();
       if (second.num_inliers > r.num_inliers) r = std::move(second);

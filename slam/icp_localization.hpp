@@ -8,7 +8,9 @@
 // max_correction_deg, or 3 sigma of the prediction where that is larger) leaves the prediction, so a mover or a dropout does not teleport the
 // robot. When fewer than half the scan's points pair, ICP is tried again with a pair gate as
 // wide as the largest accepted correction, so an error grown along a corridor's axis is caught
-// when the next corridor makes it observable.
+// when the next corridor makes it observable. The map points a scan may pair with are those
+// visible from the predicted pose (slam/map_visibility.hpp), so a surface behind a wall (a map
+// image's outer border, one wall thickness behind the inner one) never attracts a scan.
 #include "core/slam_module.hpp"
 #include "slam/edge_information.hpp"
 #include "slam/icp_params.hpp"
@@ -24,6 +26,10 @@ struct IcpLocalizationConfig {
   double max_correction_deg = 10.0;      ///< [deg] ... a larger turn too
   double info_cap_sigma_xy_m = 0.005;    ///< [m] no scan more certain than this, translation
   double info_cap_sigma_theta_deg = 0.1; ///< [deg] ... heading
+  /// Register each scan only to the map points visible from the predicted pose (walls as
+  /// occluders, slam/map_visibility.hpp), within this margin behind the nearest wall of
+  /// their bearing; 0 registers to the whole map.
+  double visibility_margin_m = 0.3;
 };
 void BindParams(IcpLocalizationConfig& c, ParamBinder& b);
 
@@ -41,6 +47,8 @@ class IcpLocalization : public SlamModule {
   IcpLocalizationConfig config_;
   IcpConfig icp_;
   IcpTarget map_;
+  World world_;  ///< the map's walls, as occluders
+  double range_max_m_ = 30.0;
   std::array<double, 4> alpha_{};
   SE2 pose_;
   Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();

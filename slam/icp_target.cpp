@@ -119,6 +119,15 @@ IcpTarget MakeScanTarget(const ScanPoints& sp, const LaserScanEvent& geometry, c
   return t;
 }
 
+IcpTarget SubsetTarget(const IcpTarget& cloud, const std::vector<int>& indices) {
+  IcpTarget t;
+  t.points.reserve(indices.size());
+  t.normals.reserve(indices.size());
+  for (int i : indices) t.points.push_back(cloud.points[i]), t.normals.push_back(cloud.normals[i]);
+  t.kd_tree = std::make_shared<LazyKdTree>();
+  return t;
+}
+
 IcpTarget MakeCloudTarget(std::vector<Eigen::Vector2d> points, const IcpTargetConfig& config) {
   IcpTarget t;
   t.points = std::move(points);

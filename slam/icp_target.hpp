@@ -59,6 +59,10 @@ IcpTarget MakeScanTarget(const ScanPoints& scan_points, const LaserScanEvent& ge
 /// Any cloud (e.g. a local map): kd-tree always, normals by PCA over the k nearest.
 IcpTarget MakeCloudTarget(std::vector<Eigen::Vector2d> points, const IcpTargetConfig& config = {});
 
+/// The points `indices` of a cloud target with their normals; its own kd-tree, built on
+/// the first query.
+IcpTarget SubsetTarget(const IcpTarget& cloud, const std::vector<int>& indices);
+
 /// Nearest target point to q (target frame). False when the target is empty.
 bool NearestByKdTree(const IcpTarget& target, const Eigen::Vector2d& q, int* index, double* dist2_m2);
 /// Unit normal of a 2D point set by PCA: the eigenvector of the smaller eigenvalue of the
