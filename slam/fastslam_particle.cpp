@@ -100,9 +100,12 @@ int ApplyExistence(FastSlamParticle& p, const Association& a, const ParticleUpda
     LandmarkGaussian lm = *FindLandmark(p.map, key);
     const Eigen::Vector2d z = PredictObservation(p.pose, lm.mean).z;
     const bool in_view = z.x() <= o.range_max_m - o.visibility_margin_m && std::abs(z.y()) <= o.half_fov_rad;
+    // Confirmed landmarks in view measure the rate: confirmed before this scan (its
+    // sighting has already added its count; the test's trial comes below).
+    LandmarkGaussian before = lm;
+    before.counter -= seen ? 1.0 : 0.0;
+    if (in_view && o.estimate_detection_rate && o.Confirmed(before)) expected.emplace_back(z.x(), seen);
     if (sprt) {
-      // Confirmed before this scan's trial.
-      if (in_view && o.estimate_detection_rate && o.Confirmed(lm)) expected.emplace_back(z.x(), seen);
       if (!seen && !in_view) continue;
       lm.log_ratio += ExistenceTrial(a.predicted[c], seen, o);
       if (lm.log_ratio <= o.wald.log_delete) {
@@ -113,11 +116,7 @@ int ApplyExistence(FastSlamParticle& p, const Association& a, const ParticleUpda
       }
       continue;
     }
-    if (!in_view) continue;
-    // Confirmed before this scan (a sighting has already added its count).
-    if (o.estimate_detection_rate && lm.counter - (seen ? 1.0 : 0.0) >= o.confirmed_counter)
-      expected.emplace_back(z.x(), seen);
-    if (seen) continue;
+    if (!in_view || seen) continue;
     lm.counter -= o.estimate_detection_rate ? DetectionProbability(o.detection, z.x()) : 1.0;
     if (lm.counter < 0) {
       EraseLandmark(p.map, key);
