@@ -112,6 +112,8 @@ class EkfSlam : public SlamModule {
   /// The output so far: trajectory and assignments by scan, with the keys of the moment.
   const Estimate& partial_estimate() const { return estimate_; }
   const EkfSlamState& state() const { return state_; }
+  /// While a loop closure is tested: the branch without it (else nullptr).
+  const EkfSlam* closure_rival() const { return closure_rival_.empty() ? nullptr : &closure_rival_.front(); }
   const std::vector<LandmarkTrack>& tracks() const { return tracks_; }
   /// The key a landmark's observations now belong to: itself, or the landmark it was merged into.
   int ResolveKey(int key) const;
@@ -191,6 +193,7 @@ class EkfSlam : public SlamModule {
   HeldStreak held_streak_;  ///< pairings held in consecutive scans
   double clutter_per_scan_ = 0.0;  ///< the sensor's configured Poisson mean of false detections
   double births_ = 0;  ///< detections that started a new landmark (unknown ids)
+  double first_scan_births_ = 0;  ///< of them, those of the first scan (NewLandmarkDensity)
   int next_key_ = 0;
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction
@@ -201,6 +204,7 @@ class EkfSlam : public SlamModule {
   bool blocks_closures_ = false;        ///< the rival: no closure on uncertain pairings or merges
   bool uncertain_merge_pending_ = false;
   int fork_scan_ = -1;          ///< the running test's first scan whose keys the branches may differ in
+  double test_fake_density_ = -1.0;  ///< [1/m^2] FakeDensity at the running test's fork, shared by both branches (-1: no test)
   int revised_from_scan_ = -1;  ///< revised_from_scan()
 };
 

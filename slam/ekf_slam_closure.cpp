@@ -43,6 +43,7 @@ void EkfSlam::StartClosureTest(const LandmarkEvent& event, const std::vector<Eig
                                const std::vector<int>& target, const std::vector<bool>& held) {
   Record(event.t_s, "closure_tests", 1.0);
   fork_scan_ = scan_;  // this scan: the rival applies it without the closure
+  test_fake_density_ = FakeDensity();
   EkfSlam rival = *this;
   rival.blocks_closures_ = true;
   std::vector<int> rival_target = target;
@@ -56,6 +57,7 @@ void EkfSlam::StartClosureTestAtMerge(double t_s) {
   uncertain_merge_pending_ = false;
   Record(t_s, "closure_tests", 1.0);
   fork_scan_ = scan_;  // the next scan: this one's assignments were made before the merge
+  test_fake_density_ = FakeDensity();
   EkfSlam rival = *this;
   rival.blocks_closures_ = true;
   closure_rival_.push_back(std::move(rival));
@@ -93,6 +95,7 @@ void EkfSlam::EndClosureTest(bool keep_closure, double t_s) {
   }
   closure_rival_.clear();
   closure_log_ratio_ = 0.0;
+  test_fake_density_ = -1.0;
   Record(t_s, "closure_test_log_ratio", log_ratio);
   Record(t_s, "closure_kept", keep_closure ? 1.0 : 0.0);
 }
@@ -101,6 +104,11 @@ double EkfSlam::FakeDensity() const {
   // What else a gate may hold: clutter, or a landmark not mapped yet. Unlike clutter, an
   // unmapped landmark repeats scan after scan, so the held pairings (which wait for
   // repeats) count only clutter; the closure test, which weighs whole scans, counts both.
+  // While a test runs, both branches use the density at its fork: it is a property of the
+  // world, not of either hypothesis. (Each branch's own births would favour the branch
+  // without the closure, which maps every re-observation anew: the more it creates, the
+  // more detections its density calls new, the likelier its scans.)
+  if (test_fake_density_ >= 0.0) return test_fake_density_;
   return clutter_density_per_m2_ + NewLandmarkDensity();
 }
 

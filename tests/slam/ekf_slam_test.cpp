@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <set>
 
 #include "slam/dead_reckoning.hpp"
 #include "tests/support/accuracy_bound.hpp"
@@ -147,6 +148,42 @@ TEST(EkfSlam, DeterministicAndKnownIdClutterIgnored) {
   EXPECT_LT(AteRmse(stream, a), OdometryAte(stream) / 5.0);
 }
 
+TEST(EkfSlam, ADenseFirstScanIsNoRateOfNewLandmarks) {
+  // 121 posts on a 3 m grid around the 10 m square, 15 m range, 2 deg bearing noise: the
+  // first scan maps ~80 of them at once. Read as a rate of new landmarks per scan, that
+  // burst made every gate look like it might hold an unmapped post, and the closure test
+  // forked on every scan from the second on (held-out park lm9_2: > 300 s for a 15-minute
+  // log, 1179 merges in one scan). The posts that come into view later are few per scan:
+  // no gate is uncertain, nothing forks, nothing is mapped twice.
+  World world;
+  for (int i = 0; i < 11; ++i)
+    for (int j = 0; j < 11; ++j) world.landmarks.push_back({i * 11 + j, {-10.0 + 3.0 * i, -10.0 + 3.0 * j}, 0.1});
+  testing::SyntheticOptions o = LandmarkOptions(3, 1, false);
+  o.landmark_every_steps = 25;  // 2 Hz
+  o.sensors.landmarks->range_max_m = 15.0;
+  o.sensors.landmarks->sigma_range_m = 0.1;
+  o.sensors.landmarks->sigma_bearing_deg = 2.0;
+  const Stream stream = MakeSyntheticStream(o, world);
+  const Estimate e = RunEkf(stream);
+  double forks = 0.0, created = 0.0;
+  if (e.diagnostics.count("closure_tests"))
+    for (const auto& [t, n] : e.diagnostics.at("closure_tests")) forks += n;
+  for (const auto& [t, n] : e.diagnostics.at("new_landmarks")) created += n;
+  std::printf("dense grid: %zu landmarks, %.0f created, %.0f closure tests, ATE %.4f m (odometry %.4f m)\n",
+              e.landmarks.size(), created, forks, AteRmse(stream, e), OdometryAte(stream));
+  EXPECT_EQ(forks, 0.0);
+  EXPECT_EQ(e.landmarks.size(), world.landmarks.size());
+  std::set<int> nearest;  // no post mapped twice: each estimate has a post of its own
+  for (const auto& l : e.landmarks) {
+    int best = -1;
+    for (const auto& t : world.landmarks)
+      if (best < 0 || (t.position - l.position).norm() < (world.landmarks[best].position - l.position).norm()) best = t.id;
+    nearest.insert(best);
+  }
+  EXPECT_EQ(nearest.size(), e.landmarks.size());
+  EXPECT_LT(AteRmse(stream, e), OdometryAte(stream) / 2.0);
+}
+
 TEST(EkfSlam, CovarianceStaysSymmetricPsdOverALongRun) {
   const World world = LandmarkWorld();
   const Stream stream = MakeSyntheticStream(LandmarkOptions(6, 6), world);
@@ -193,14 +230,16 @@ TEST(EkfSlam, ConsistentOnShortRuns) {
   }
 }
 
-/// A scripted run: landmarks `marks` seen together 3 times from the start (confirmed), then
+/// A scripted run: landmarks `marks` seen together 3 times from the start (confirmed; or
+/// `first_scans`, the indices each of the 3 scans sees), then
 /// a 10 m out-and-back drive without scans (noise-free odometry, large alpha: the pose
 /// covariance grows to ~1 m and ~8 deg while the mean stays exact), then the scans
 /// `rescans` from the start pose again, each the indices into `marks` it sees (empty: a
 /// scan that sees nothing), each at the time of an odometry event so the trajectory shows
 /// its update.
 Stream HoldStream(double clutter_per_scan, const std::vector<std::vector<int>>& rescans,
-                  const std::vector<Eigen::Vector2d>& marks = {{5, 3}}) {
+                  const std::vector<Eigen::Vector2d>& marks = {{5, 3}},
+                  const std::vector<std::vector<int>>& first_scans = {}) {
   Stream s;
   s.header.sensors.odometry = OdometryConfig{.rate_hz = 50, .alpha = {0.001, 0.002, 0.05, 0.001}};
   s.header.sensors.landmarks = LandmarkSensorConfig{.rate_hz = 5, .range_max_m = 10, .fov_deg = 360,
@@ -208,17 +247,21 @@ Stream HoldStream(double clutter_per_scan, const std::vector<std::vector<int>>& 
                                                     .known_ids = false, .clutter_per_scan = clutter_per_scan};
   std::vector<LandmarkObservation> seen;
   for (const Eigen::Vector2d& m : marks) seen.push_back({m.norm(), std::atan2(m.y(), m.x()), -1});
+  const auto observed = [&](const std::vector<int>& scan) {
+    std::vector<LandmarkObservation> z;
+    for (int m : scan) z.push_back(seen[m]);
+    return z;
+  };
   double t = 0.0;
-  for (int k = 0; k < 3; ++k) s.events.push_back(LandmarkEvent{t += 0.2, seen});
+  for (int k = 0; k < 3; ++k)
+    s.events.push_back(LandmarkEvent{t += 0.2, first_scans.empty() ? seen : observed(first_scans.at(k))});
   for (int leg = 0; leg < 2; ++leg) {
     for (int k = 0; k < 20; ++k) s.events.push_back(OdometryEvent{t += 0.1, SE2(0.5, 0, 0)});
     s.events.push_back(OdometryEvent{t += 0.1, SE2(0, 0, M_PI - 1e-9)});
   }
   for (const std::vector<int>& scan : rescans) {
     s.events.push_back(OdometryEvent{t += 0.1, SE2(0, 0, 0)});
-    std::vector<LandmarkObservation> z;
-    for (int m : scan) z.push_back(seen[m]);
-    s.events.push_back(LandmarkEvent{t, z});
+    s.events.push_back(LandmarkEvent{t, observed(scan)});
   }
   return s;
 }
@@ -309,6 +352,46 @@ TEST(EkfSlam, NoClutterOrDisabledHoldsNothing) {
     const double before = e.trajectory[e.trajectory.size() - 2].covariance.trace();
     EXPECT_LT(e.trajectory.back().covariance.trace(), 0.5 * before) << clutter;  // used at once
   }
+}
+
+TEST(EkfSlam, BothBranchesOfAClosureTestUseTheDensityAtTheFork) {
+  // Ten posts mapped at the start (two in the first scan, eight more in the next: births
+  // that make unmapped posts likely), the drive that leaves the pose uncertain, then scans
+  // that see the first two again and two posts never seen before. The first two fall in
+  // gates that may hold an unmapped post: the closure test forks. The branch without the
+  // closure maps them anew, so it has more births; scored with its own births it would
+  // call more detections new and find its scans likelier. Both use the density at the fork.
+  std::vector<Eigen::Vector2d> marks = {{5, 3}, {5, -3}};
+  for (int k = 0; k < 8; ++k) marks.push_back({-6.0, -7.0 + 2.0 * k});
+  const int first_new = static_cast<int>(marks.size());
+  for (int k = 0; k < 12; ++k) marks.push_back({2.0 + 0.5 * k, k % 2 ? 6.0 : -6.0});
+  std::vector<std::vector<int>> rescans;
+  for (int k = 0; k < 6; ++k) rescans.push_back({0, 1, first_new + 2 * k, first_new + 2 * k + 1});
+  std::vector<int> all_first(first_new);
+  std::iota(all_first.begin(), all_first.end(), 0);
+  const Stream stream = HoldStream(0.01, rescans, marks, {{0, 1}, all_first, all_first});
+  EkfSlam ekf({});
+  ekf.Start(stream.header);
+  int tested = 0, differing = 0;
+  double fork_density = -1.0;
+  for (const auto& event : stream.events) {
+    if (const auto* o = std::get_if<OdometryEvent>(&event)) ekf.OnOdometry(*o);
+    const auto* scan = std::get_if<LandmarkEvent>(&event);
+    if (scan == nullptr) continue;
+    ekf.OnLandmarks(*scan);
+    const EkfSlam* rival = ekf.closure_rival();
+    if (rival == nullptr) {
+      fork_density = -1.0;
+      continue;
+    }
+    if (fork_density < 0.0) fork_density = ekf.FakeDensity();
+    ++tested;
+    differing += rival->state().NumLandmarks() != ekf.state().NumLandmarks() ? 1 : 0;
+    EXPECT_EQ(rival->FakeDensity(), ekf.FakeDensity()) << scan->t_s;
+    EXPECT_EQ(ekf.FakeDensity(), fork_density) << scan->t_s;
+  }
+  EXPECT_GT(tested, 1);
+  EXPECT_GT(differing, 0);  // the branches differ in their births
 }
 
 }  // namespace
