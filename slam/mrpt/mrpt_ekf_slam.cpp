@@ -4,6 +4,9 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/slam/CRangeBearingKFSLAM2D.h>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
 
 #include "slam/mrpt/mrpt_convert.hpp"
 
@@ -19,6 +22,9 @@ void BindParams(MrptEkfSlamConfig& c, ParamBinder& b) {
   b.Bind("noise_scale", c.noise_scale, "-", "factor on the stream's sensor and odometry variances (1 = as configured)");
   b.Bind("min_sigma_xy_m", c.min_sigma_xy_m, "m", "floor on the odometry action's position std");
   b.Bind("min_sigma_theta_deg", c.min_sigma_theta_deg, "deg", "floor on the odometry action's heading std");
+  b.Bind("max_landmarks", c.max_landmarks, "-",
+         "stop with an error when MRPT's map holds more landmarks (it keeps every unpaired detection, clutter "
+         "included, and a step's cost grows faster than n^2; 0 = no limit)");
 }
 
 struct MrptEkfSlam::State {
@@ -97,8 +103,19 @@ void MrptEkfSlam::OnLandmarks(const LandmarkEvent& landmarks) {
     s.estimate.trajectory.back() = s.current;  // the update refines the odometry pose at this time
   else
     s.estimate.trajectory.push_back(s.current);
-  s.estimate.diagnostics["landmarks_in_map"].push_back(
-      {landmarks.t_s, static_cast<double>(s.filter.getNumberOfLandmarksInTheMap())});
+  const size_t mapped = s.filter.getNumberOfLandmarksInTheMap();
+  s.estimate.diagnostics["landmarks_in_map"].push_back({landmarks.t_s, static_cast<double>(mapped)});
+  if (config_.max_landmarks > 0 && mapped > static_cast<size_t>(config_.max_landmarks)) {
+    char when[32];
+    std::snprintf(when, sizeof when, "%.2f", landmarks.t_s);
+    throw std::runtime_error(
+        "mrpt-ekf-slam: MRPT's map holds " + std::to_string(mapped) + " landmarks at t = " + when +
+        " s, more than max_landmarks = " + std::to_string(config_.max_landmarks) +
+        " (MRPT's EKF keeps every detection it does not pair, clutter included, and each step's cost grows faster "
+        "than the square of the landmarks; stopped rather than run for hours)\n  fix: --set "
+        "algo.mrpt-ekf-slam.max_landmarks=N (0 = no limit) if the world has that many landmarks; compare the peer "
+        "on a stream without clutter or with known ids");
+  }
 }
 
 Estimate MrptEkfSlam::Finish() {

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 #include "core/error.hpp"
 #include "slam/mrpt/mrpt_ekf_slam.hpp"
@@ -82,6 +84,22 @@ TEST(MrptEkfSlam, UnknownIdsUseMrptDataAssociation) {
   EXPECT_TRUE(NoWorseThanMeasured(rmse, kUnknownIdsRmse_m));
   EXPECT_GE(e.landmarks.size(), s.header.world.landmarks.size());
   EXPECT_LE(e.landmarks.size(), kUnknownIdsLandmarks);
+}
+
+TEST(MrptEkfSlam, AMapPastMaxLandmarksStopsTheRunWithTheReason) {
+  // MRPT's association leaves 25 landmarks for 10 posts here (test above); a limit of 12
+  // stops the run when the map passes it, naming the count, the limit and the fix.
+  const Stream s = LandmarkStream(4, false);
+  try {
+    RunEkf(s, {{"max_landmarks", "12"}});
+    FAIL() << "no error past max_landmarks";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("holds 13 landmarks"), std::string::npos) << what;
+    EXPECT_NE(what.find("max_landmarks = 12"), std::string::npos) << what;
+    EXPECT_NE(what.find("fix: --set algo.mrpt-ekf-slam.max_landmarks="), std::string::npos) << what;
+  }
+  EXPECT_EQ(RunEkf(s, {{"max_landmarks", "0"}}).landmarks.size(), RunEkf(s).landmarks.size());  // 0: no limit
 }
 
 TEST(MrptEkfSlam, BadParameterIsAnInputError) {
