@@ -125,6 +125,7 @@ void EkfSlam::Start(const StreamHeader& header) {
   test_fake_density_ = -1.0;
   clutter_per_scan_ = sensor.clutter_per_scan;
   births_ = first_scan_births_ = 0;
+  first_birth_scan_ = -1;
   next_key_ = 0;
   scan_ = 0;
   prior_position_ = header.start_pose.translation();
@@ -224,7 +225,10 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
   int created = 0, discarded = 0;
   for (size_t i = 0; i < obs.size(); ++i) created += target[i] == Association::kNew ? 1 : 0;
   births_ += created;
-  if (scan_ == 0) first_scan_births_ = created;
+  if (first_birth_scan_ < 0 && created > 0) {
+    first_birth_scan_ = scan_;
+    first_scan_births_ = created;
+  }
   const double prior_log_ratio = NewLandmarkPriorLogRatio();
   for (size_t i = 0; i < obs.size(); ++i) {
     if (target[i] == Association::kDiscard) ++discarded;

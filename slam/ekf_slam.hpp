@@ -193,7 +193,8 @@ class EkfSlam : public SlamModule {
   HeldStreak held_streak_;  ///< pairings held in consecutive scans
   double clutter_per_scan_ = 0.0;  ///< the sensor's configured Poisson mean of false detections
   double births_ = 0;  ///< detections that started a new landmark (unknown ids)
-  double first_scan_births_ = 0;  ///< of them, those of the first scan (NewLandmarkDensity)
+  double first_scan_births_ = 0;  ///< of them, those of the first scan that had any (NewLandmarkDensity)
+  int first_birth_scan_ = -1;     ///< that scan (-1: none yet)
   int next_key_ = 0;
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction

@@ -27,12 +27,12 @@ double EkfSlam::NewLandmarkPriorLogRatio() const {
 }
 
 double EkfSlam::NewLandmarkDensity() const {
-  // The first scan maps its whole footprint at once: its births are no sample of the rate
-  // at which unmapped landmarks come into view (held-out park lm9_2, 34 posts in the first
-  // scan: the rate read 17 per scan, every gate looked uncertain, and the closure test
-  // forked on every scan). The rate is counted from the second scan on.
-  if (scan_ == 0) return 0.0;
-  return UnmappedLandmarkDensity(births_ - first_scan_births_, scan_, clutter_per_scan_,
+  // The first scan that maps anything maps its whole footprint at once: its births are no
+  // sample of the rate at which unmapped landmarks come into view (held-out park lm9_2, 34
+  // posts in the first scan: the rate read 17 per scan, every gate looked uncertain, and
+  // the closure test forked on every scan). The rate is counted over the scans after it.
+  if (first_birth_scan_ < 0 || scan_ <= first_birth_scan_) return 0.0;
+  return UnmappedLandmarkDensity(births_ - first_scan_births_, scan_ - first_birth_scan_, clutter_per_scan_,
                                  range_max_m_ * range_max_m_ * half_fov_rad_, 0.0);
 }
 
