@@ -102,9 +102,11 @@ int ApplyExistence(FastSlamParticle& p, const Association& a, const ParticleUpda
     const bool in_view = z.x() <= o.range_max_m - o.visibility_margin_m && std::abs(z.y()) <= o.half_fov_rad;
     // Confirmed landmarks in view measure the rate: confirmed before this scan (its
     // sighting has already added its count; the test's trial comes below).
-    LandmarkGaussian before = lm;
-    before.counter -= seen ? 1.0 : 0.0;
-    if (in_view && o.estimate_detection_rate && o.Confirmed(before)) expected.emplace_back(z.x(), seen);
+    if (in_view && o.estimate_detection_rate) {
+      LandmarkGaussian before = lm;
+      before.counter -= seen ? 1.0 : 0.0;
+      if (o.Confirmed(before)) expected.emplace_back(z.x(), seen);
+    }
     if (sprt) {
       if (!seen && !in_view) continue;
       lm.log_ratio += ExistenceTrial(a.predicted[c], seen, o);
