@@ -255,6 +255,7 @@ Estimate GraphSlam::Finish() {
   auto& d = estimate_.diagnostics;
   d["solver_iterations"].emplace_back(t_end, s.iterations);
   d["chi2_final"].emplace_back(t_end, s.chi2_final);
+  d["observations_left_out"].emplace_back(t_end, s.observations_left_out);
   d["chi2_per_residual"].emplace_back(t_end, s.num_residuals > 0 ? s.chi2_final / s.num_residuals : 0.0);
   d["solution_usable"].emplace_back(t_end, s.usable ? 1.0 : 0.0);
   d["num_keyframes"].emplace_back(t_end, static_cast<double>(graph_.poses.size()));

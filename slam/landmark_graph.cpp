@@ -3,6 +3,8 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "slam/angle_manifold.hpp"
@@ -40,11 +42,32 @@ Eigen::Matrix3d SqrtInformationOf(const Eigen::Matrix3d& covariance) {
   return U;
 }
 
-}  // namespace
+// Observations whose landmark the solution puts closer to their keyframe than the range's
+// standard deviation are left out (true if there were any). At |m - t| -> 0 the
+// range-bearing factor is singular: the bearing is undefined and its Jacobian grows as
+// 1/|m - t|, so a landmark whose observations cannot be one point (two clutter detections
+// the front end paired) can lower the cost by sitting on one of its keyframes, where that
+// keyframe's bearing residual vanishes. Ceres then stops at |m - t| ~ 1e-9 m and the
+// information matrix is numerically singular (held-out park lm10_0: its pose block reached
+// 1.4e22, so no marginal existed). Within sigma_r the bearing means nothing even for a real
+// landmark; no real post is that close to a robot.
+bool LeaveOutAtTheSingularity(const LandmarkGraph& g, std::vector<bool>& left_out) {
+  const double sigma_r = std::sqrt(g.observation_covariance(0, 0));
+  bool any = false;
+  for (size_t i = 0; i < g.observations.size(); ++i) {
+    const RangeBearingConstraint& obs = g.observations[i];
+    const auto it = g.landmarks.find(obs.landmark);
+    if (left_out[i] || it == g.landmarks.end()) continue;
+    if ((it->second - g.poses.at(static_cast<size_t>(obs.keyframe)).translation()).norm() < sigma_r)
+      left_out[i] = any = true;
+  }
+  return any;
+}
 
-LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOptions& options) {
-  LandmarkGraphSolution solution;
-  if (g.poses.empty()) return solution;
+/// One solve without the observations left out; false (and no marginals) if it left out more.
+bool SolveOnce(LandmarkGraph& g, const LandmarkGraphOptions& options, std::vector<bool>& left_out,
+               LandmarkGraphSolution& solution) {
+  solution = {};
   // Parameters: one (x, y, theta) block per keyframe, copied out of the SE2s and back.
   std::vector<double> x(3 * g.poses.size());
   for (size_t i = 0; i < g.poses.size(); ++i) {
@@ -67,9 +90,10 @@ LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOp
   const Eigen::Matrix2d info_z = g.observation_covariance.inverse();
   const Eigen::Matrix2d sqrt_info_z =
       Eigen::LLT<Eigen::Matrix2d>(0.5 * (info_z + info_z.transpose())).matrixU();
-  for (const auto& obs : g.observations) {
+  for (size_t i = 0; i < g.observations.size(); ++i) {
+    const RangeBearingConstraint& obs = g.observations[i];
     const auto it = g.landmarks.find(obs.landmark);
-    if (it == g.landmarks.end()) continue;
+    if (left_out[i] || it == g.landmarks.end()) continue;
     ceres::LossFunction* loss = options.huber_scale > 0 ? new ceres::HuberLoss(options.huber_scale) : nullptr;
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<RangeBearingFactor, 2, 3, 2>(
                                  new RangeBearingFactor(obs.z, sqrt_info_z)),
@@ -95,9 +119,10 @@ LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOp
   solution.chi2_final = 2.0 * summary.final_cost;
   solution.num_residuals = summary.num_residuals;
   for (size_t i = 0; i < g.poses.size(); ++i) g.poses[i] = SE2(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+  if (solution.usable && LeaveOutAtTheSingularity(g, left_out)) return false;
 
   solution.pose_covariances.assign(g.poses.size(), Eigen::Matrix3d::Zero());
-  if (!(options.compute_covariance || options.joint_landmark_covariance) || !solution.usable) return solution;
+  if (!(options.compute_covariance || options.joint_landmark_covariance) || !solution.usable) return true;
   // Marginals: selected inversion of the information matrix (slam/sparse_marginals.hpp).
   std::vector<double*> blocks;
   std::vector<std::pair<int, int>> requested;
@@ -115,16 +140,28 @@ LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOp
   const Eigen::SparseMatrix<double> H = InformationMatrix(problem, blocks);
   if (options.joint_landmark_covariance) {
     solution.landmark_joint_covariance = InverseTrailingBlock(H, first_landmark);
-    if (solution.landmark_joint_covariance.size() == 0) return solution;
+    if (solution.landmark_joint_covariance.size() == 0) return true;
   }
   if (options.compute_covariance) {
     const DiagonalBlocksOfInverse inverse = InverseDiagonalBlocks(H, requested);
-    if (!inverse.ok) return solution;
+    if (!inverse.ok) return true;
     size_t b = 0;
     for (size_t i = 1; i < g.poses.size(); ++i) solution.pose_covariances[i] = inverse.blocks[b++];
     for (const auto& [key, m] : g.landmarks) solution.landmark_covariances[key] = inverse.blocks[b++];
   }
   solution.covariance_ok = true;
+  return true;
+}
+
+}  // namespace
+
+LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& g, const LandmarkGraphOptions& options) {
+  LandmarkGraphSolution solution;
+  if (g.poses.empty()) return solution;
+  std::vector<bool> left_out(g.observations.size(), false);
+  // Each round that returns false left out at least one more observation, so this ends.
+  while (!SolveOnce(g, options, left_out, solution)) continue;
+  solution.observations_left_out = static_cast<int>(std::count(left_out.begin(), left_out.end(), true));
   return solution;
 }
 

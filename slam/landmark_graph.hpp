@@ -60,6 +60,10 @@ struct LandmarkGraphSolution {
   std::map<int, Eigen::Matrix2d> landmark_covariances;
   /// joint_landmark_covariance: all landmarks' positions stacked in key order (2 rows each)
   Eigen::MatrixXd landmark_joint_covariance;
+  /// Observations left out because the solution put their landmark closer to their keyframe
+  /// than the range's standard deviation, where the range-bearing factor is singular (the
+  /// graph is solved again without them; SolveLandmarkGraph's comment).
+  int observations_left_out = 0;
 };
 
 LandmarkGraphSolution SolveLandmarkGraph(LandmarkGraph& graph, const LandmarkGraphOptions& options);

@@ -127,6 +127,44 @@ TEST(LandmarkGraph, ALoopWithLargeHeadingDriftConvergesWithTheDefaultIterations)
   EXPECT_LT(worst_m, 1e-4);
 }
 
+TEST(LandmarkGraph, ALandmarkOnItsOwnKeyframeIsLeftOutAndTheMarginalsExist) {
+  // Held-out park lm10_0 (range sigma 0.2 m, bearing 0.5 deg): the front end paired two
+  // clutter detections 0.6 m from the robot at consecutive keyframes 0.5 m apart, whose
+  // bearing lines (-16.6 and +25.7 deg) meet no point at that range. The smoother lowered
+  // the cost by putting the landmark on the second keyframe, where its bearing residual
+  // vanishes (|m - t| ~ 1e-9 m); the information matrix was then numerically singular, no
+  // marginal existed, and every merge of the smoother was skipped. The observation at the
+  // singularity is left out and the graph solved again. Here, without that, the collapsed
+  // landmark also pulls the graph 9 cm off the real post.
+  LandmarkGraph g;
+  g.observation_covariance = Eigen::Vector2d(0.2 * 0.2, std::pow(0.5 * M_PI / 180, 2)).asDiagonal();
+  const Eigen::Matrix3d step_covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-5).asDiagonal();
+  const Eigen::Vector2d post(2.0, 3.0);  // a real post, seen consistently from every keyframe
+  for (int i = 0; i < 4; ++i) {
+    g.poses.push_back(SE2(0.5 * i, 0.0, 0.0));
+    if (i > 0) g.odometry.push_back({i - 1, SE2(0.5, 0.0, 0.0), step_covariance});
+    g.observations.push_back({i, 0, PredictObservation(g.poses.back(), post).z});
+  }
+  g.observations.push_back({1, 1, Eigen::Vector2d(0.589437, -0.292535)});
+  g.observations.push_back({2, 1, Eigen::Vector2d(0.598479, 0.449126)});
+  g.landmarks[0] = post;
+  // The front end's guess: between the two detections' inverse observations.
+  g.landmarks[1] = 0.5 * (InverseObservation(g.poses[1], g.observations[4].z).landmark +
+                          InverseObservation(g.poses[2], g.observations[5].z).landmark);
+  const LandmarkGraphSolution s = SolveLandmarkGraph(g, {.compute_covariance = true, .joint_landmark_covariance = true});
+  ASSERT_TRUE(s.usable);
+  EXPECT_EQ(s.observations_left_out, 1);
+  EXPECT_TRUE(s.covariance_ok);
+  EXPECT_EQ(s.landmark_joint_covariance.rows(), 4);
+  // What is left of the pair is one detection, which places its landmark where it says.
+  ASSERT_TRUE(g.landmarks.count(1));
+  double to_a_detection_m = 1e9;
+  for (const RangeBearingConstraint& o : {g.observations[4], g.observations[5]})
+    to_a_detection_m = std::min(to_a_detection_m, (g.landmarks[1] - InverseObservation(g.poses[static_cast<size_t>(o.keyframe)], o.z).landmark).norm());
+  EXPECT_LT(to_a_detection_m, 1e-6);
+  EXPECT_LT((g.landmarks[0] - post).norm(), 1e-6);
+}
+
 // Measured on seeds 1..4 (ATE [m], worst landmark error [m]); the test prints them:
 // ./build/tests/slam_graphslam_test --gtest_filter=GraphSlam.AtLeastAsAccurate*
 constexpr double kKnownIdsAte_m[] = {0.0467, 0.1053, 0.0437, 0.0370};
