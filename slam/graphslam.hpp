@@ -30,7 +30,11 @@ namespace slambox {
 struct GraphSlamConfig {
   int keyframe_every_odometry = 0;  ///< [steps] a scan makes a keyframe after this much odometry (0 = off; default: every scan)
   double keyframe_distance_m = 0.0; ///< [m] ... or after this much travel (0 = off); both off: every scan
-  int solve_every_keyframes = 0;    ///< [keyframes] also solve during the run (0 = only at the end)
+  /// [keyframes] also solve during the run every this many keyframes (0 = off). With any
+  /// solve during the run new keyframes are composed onto the solved graph with odometry,
+  /// and the end solve starts from whichever of that graph and the front end's filtered
+  /// poses reaches the lower chi2 (GraphSlam::StartFromTheBetterGuess).
+  int solve_every_keyframes = 0;
   int max_iterations = LandmarkGraphOptions{}.max_iterations;  ///< [-] Ceres iterations per solve
   bool compute_covariance = true;   ///< marginal covariances of poses and landmarks (slam/sparse_marginals.hpp)
   double huber_scale = 0.0;         ///< [sigma] Huber loss on range-bearing residuals (0 = none)
@@ -60,6 +64,9 @@ class GraphSlam : public SlamModule {
   bool WantKeyframe() const;
   void AddKeyframe(double t_s);
   LandmarkGraphSolution Solve(bool with_covariance, bool joint_landmarks = false);
+  /// With periodic solves: solves from the periodically solved graph and from the front
+  /// end's filtered poses, and keeps the guess of the lower chi2 (diagnostics end_guess_*).
+  void StartFromTheBetterGuess();
   bool MergesInSmoother() const;
   /// Gate and threshold from merge_probability, density of the graph's current landmarks.
   MergeSearchSettings AmbiguityTest() const;
@@ -84,6 +91,7 @@ class GraphSlam : public SlamModule {
   LandmarkGraph graph_;
   std::vector<double> keyframe_t_s_;
   std::vector<OdometrySample> samples_;
+  std::vector<SE2> frontend_poses_;  ///< per keyframe, the front end's filtered pose (a guess of the end solve)
   std::map<int, Eigen::Vector2d> solved_landmarks_;  ///< from the last periodic solve
   std::map<int, int> merged_into_;  ///< smoother merges: removed key -> kept key
   std::set<std::pair<int, int>> rejected_merges_;  ///< (smaller, larger key): merges the re-solved graph refused

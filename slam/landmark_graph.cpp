@@ -108,6 +108,7 @@ bool SolveOnce(LandmarkGraph& g, const LandmarkGraphOptions& options, std::vecto
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver_options.max_num_iterations = options.max_iterations;
+  solver_options.function_tolerance = options.function_tolerance;
   solver_options.num_threads = 1;
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;

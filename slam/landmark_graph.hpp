@@ -46,6 +46,9 @@ struct LandmarkGraphOptions {
   bool compute_covariance = true;  ///< every pose's and landmark's marginal covariance
   double huber_scale = 0.0;  ///< Huber loss on whitened range-bearing residuals (0 = none)
   bool joint_landmark_covariance = false;  ///< the joint covariance of all landmarks (independent of compute_covariance)
+  /// Ceres stops when an iteration lowers the cost by less than this fraction (Ceres' own
+  /// default): two solutions whose chi2 differ by less are the same to the solver.
+  double function_tolerance = 1e-6;
 };
 
 struct LandmarkGraphSolution {

@@ -265,5 +265,20 @@ TEST(GraphSlam, UnknownIdsAndPeriodicSolves) {
   EXPECT_GT(g.diagnostics.at("solver_iterations").size(), 3u);
 }
 
+TEST(GraphSlam, PeriodicSolvesEndFromTheGuessOfTheLowerChi2) {
+  // Known ids: the end solve starts from the guess of the lower chi2 (the periodically
+  // solved graph or the front end's filtered poses, each solved under the same association)
+  // and goes on from there, so its chi2 is not above that one's.
+  const Stream stream = MakeSyntheticStream(LandmarkOptions(7, 2, true), LandmarkWorld());
+  GraphSlamConfig config;
+  config.solve_every_keyframes = 100;
+  const Estimate g = RunModule<GraphSlam>(stream, config);
+  const double incremental = g.diagnostics.at("end_guess_chi2_incremental").back().second;
+  const double filtered = g.diagnostics.at("end_guess_chi2_filtered").back().second;
+  std::printf("end solve from the solved graph: chi2 %.8g, from the filtered poses: %.8g\n", incremental, filtered);
+  EXPECT_EQ(g.diagnostics.at("end_guess_incremental").back().second, incremental < (1.0 - 1e-6) * filtered ? 1.0 : 0.0);
+  EXPECT_LE(g.diagnostics.at("chi2_final").back().second, std::min(incremental, filtered) * (1.0 + 1e-6));
+}
+
 }  // namespace
 }  // namespace slambox
