@@ -46,6 +46,21 @@ def carve_segment(grid, res, a, b, half):
         cx, cy = int(x / res), int(y / res)
         grid[max(cy-h, 0):cy+h+1, max(cx-h, 0):cx+h+1] = 0
 
+def segment_blocked(grid, res, a, b, radius):
+    """True if a disc of `radius` moved from a to b overlaps an occupied cell of grid."""
+    n = int(math.hypot(b[0]-a[0], b[1]-a[1]) / (res/2)) + 1
+    h = int(math.ceil(radius / res)) + 1
+    ny, nx = grid.shape
+    for i in range(n + 1):
+        x = a[0] + i/n*(b[0]-a[0]); y = a[1] + i/n*(b[1]-a[1])
+        cx, cy = int(x / res), int(y / res)
+        for gy in range(max(cy-h, 0), min(cy+h+1, ny)):
+            for gx in range(max(cx-h, 0), min(cx+h+1, nx)):
+                if not grid[gy, gx]: continue
+                dx = max(abs(x - (gx+0.5)*res) - res/2, 0.0); dy = max(abs(y - (gy+0.5)*res) - res/2, 0.0)
+                if dx*dx + dy*dy < radius*radius: return True
+    return False
+
 def dist_to_path(x, y, path):
     best = 1e9
     for a, b in zip(path[:-1], path[1:]):
@@ -105,9 +120,13 @@ def lidar_scenario(rng, name, outdir):
             dx, dy = b[0]-a[0], b[1]-a[1]; L = math.hypot(dx, dy) or 1
             off = half * 0.75
             nxo, nyo = -dy/L*off, dx/L*off
+            speed_mps = rng.uniform(0.3, 1.2)  # drawn either way, so later draws stay as they were
+            p0, p1 = (a[0]+nxo, a[1]+nyo), (b[0]+nxo, b[1]+nyo)
+            if segment_blocked(grid, res, p0, p1, 0.25):  # a pillar on its lane: slambox refuses it
+                continue
             ms.append("    - {circle: {radius_m: 0.25}, path: [[%.2f, %.2f], [%.2f, %.2f]], speed_mps: %.1f, loop: true}"
-                      % (a[0]+nxo, a[1]+nyo, b[0]+nxo, b[1]+nyo, rng.uniform(0.3, 1.2)))
-        movers = "  movers:\n" + "\n".join(ms) + "\n"
+                      % (p0[0], p0[1], p1[0], p1[1], speed_mps))
+        movers = "  movers:\n" + "\n".join(ms) + "\n" if ms else ""
     s = f"""version: 1
 name: {name}
 description: "random lidar world ({kind}, {W:.0f} x {H:.0f} m, corridor half width {half} m)"
