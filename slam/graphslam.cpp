@@ -226,8 +226,8 @@ void GraphSlam::StartFromTheBetterGuess() {
   // is smooth, but an early solve on little data may fold it. Held-out park lm10_7 (known
   // ids): from the front end's poses chi2 2.7e6 and ATE 5.93 m, from the solved graph 4.0e3
   // and 0.17 m; lm2_0 the other way round. Both are solved under the same association and
-  // the lower chi2 kept; within Ceres' function tolerance the front end's (the guess before
-  // periodic solves were the default).
+  // the lower chi2 kept; within Ceres' function tolerance the front end's (the only guess
+  // without periodic solves).
   const LandmarkGraphSolution incremental = Solve(false);
   const std::vector<SE2> incremental_poses = graph_.poses;
   const std::map<int, Eigen::Vector2d> incremental_landmarks = solved_landmarks_;

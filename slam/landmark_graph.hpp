@@ -9,6 +9,9 @@
 // Poses are SE2, solved on the pose manifold of slam/angle_manifold.hpp (as the pose graph).
 // Marginal covariances of every pose and landmark: selected inversion of the information
 // matrix (slam/sparse_marginals.hpp; deterministic, no ceres::Covariance).
+// An observation whose landmark the solution puts within the range's standard deviation of
+// its keyframe (the range-bearing factor's singularity) is left out and the graph solved
+// again (LandmarkGraphSolution::observations_left_out; slam/landmark_graph.cpp says why).
 #include <Eigen/Core>
 #include <map>
 #include <string>
