@@ -7,9 +7,7 @@
 # Usage: held_out_parks_test.sh SLAMBOX SOURCE_DIR (77 = skipped: no NumPy for the generator).
 set -u
 slambox=$1; src=$2
-python=/usr/bin/python3
-"$python" -c "import numpy" 2>/dev/null || { echo "skipped: $python has no numpy (apt-get install python3-numpy)"; exit 77; }
-out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
+source "$src/tests/scripts/generator_env.sh"
 "$python" "$src/scripts/random_scenarios.py" "$out" lm 1 10 > /dev/null || exit 1
 "$python" "$src/scripts/random_scenarios.py" "$out" lm 11 3 > /dev/null || exit 1
 for park in lm10_0 lm3_10; do

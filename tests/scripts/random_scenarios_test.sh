@@ -5,9 +5,7 @@
 # `slambox scenario show`. Usage: random_scenarios_test.sh SLAMBOX SOURCE_DIR (77 = skipped).
 set -u
 slambox=$1; src=$2
-python=/usr/bin/python3
-"$python" -c "import numpy" 2>/dev/null || { echo "skipped: $python has no numpy (apt-get install python3-numpy)"; exit 77; }
-out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
+source "$src/tests/scripts/generator_env.sh"
 "$python" "$src/scripts/random_scenarios.py" "$out" lidar 3 8 > /dev/null || exit 1
 "$python" "$src/scripts/random_scenarios.py" "$out" lidar 6 10 > /dev/null || exit 1
 "$python" "$src/scripts/random_scenarios.py" "$out" lm 4 10 > /dev/null || exit 1

@@ -276,8 +276,8 @@ TEST(GraphSlam, PeriodicSolvesEndFromTheGuessOfTheLowerChi2) {
   const double incremental = g.diagnostics.at("end_guess_chi2_incremental").back().second;
   const double filtered = g.diagnostics.at("end_guess_chi2_filtered").back().second;
   std::printf("end solve from the solved graph: chi2 %.8g, from the filtered poses: %.8g\n", incremental, filtered);
-  EXPECT_EQ(g.diagnostics.at("end_guess_incremental").back().second, incremental < (1.0 - 1e-6) * filtered ? 1.0 : 0.0);
-  EXPECT_LE(g.diagnostics.at("chi2_final").back().second, std::min(incremental, filtered) * (1.0 + 1e-6));
+  EXPECT_EQ(g.diagnostics.at("end_guess_incremental").back().second, incremental < (1.0 - LandmarkGraphOptions{}.function_tolerance) * filtered ? 1.0 : 0.0);
+  EXPECT_LE(g.diagnostics.at("chi2_final").back().second, std::min(incremental, filtered) * (1.0 + LandmarkGraphOptions{}.function_tolerance));
 }
 
 }  // namespace
