@@ -65,6 +65,8 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("loop_max_runner_up_ratio", c.loop_max_runner_up_ratio, "-", "ambiguity: runner-up score / best score must stay below this");
   b.Bind("loop_max_match_shift_m", c.loop_max_match_shift_m, "m", "ICP may move the correlative match at most this far");
   b.Bind("loop_reject_window_edge", c.loop_reject_window_edge, "-", "reject a correlative optimum on the search window's edge (the score still rises outwards)");
+  b.Bind("loop_max_back_face_fraction", c.loop_max_back_face_fraction, "-", "reject a closure whose scan sees more than this fraction of its matched points from behind the target's surfaces", AtLeast(0));
+  b.Bind("loop_back_face_max_distance_m", c.loop_back_face.max_distance_m, "m", "back-face check: a scan point this close to the target is matched", Above(0));
   b.Bind("loop_region", c.loop_region, "-", "region loop search where no candidate closed: old keyframes within the scan's median range, passes merged where they agree");
   b.Bind("loop_region_overlap_m", c.loop_region_passes.overlap_m, "m", "region: a pass's point with an admitted point this close is in their overlap", Above(0));
   b.Bind("loop_region_min_overlap", c.loop_region_passes.min_overlap_fraction, "-", "region: a pass must overlap the admitted ones with this fraction of its points (and score loop_min_score there)");
@@ -240,30 +242,6 @@ void IcpPoseSlam::AddKeyframe(const LaserScanEvent& scan, ScanPoints points, con
   last_scan_cov_.setZero();
   RecordPose(scan.t_s);
   if (k > 0) CloseLoops(scan.t_s);
-}
-
-const IcpPoseSlam::LoopTarget& IcpPoseSlam::LoopTargetFor(int keyframe) {
-  for (const LoopTarget& t : loop_targets_)
-    if (t.keyframe == keyframe) return t;
-  constexpr size_t kCached = 8;
-  if (loop_targets_.size() >= kCached) loop_targets_.erase(loop_targets_.begin());
-  const int n = static_cast<int>(keyframes_.size());
-  const int lo = std::max(0, keyframe - config_.loop_submap_keyframes);
-  const int hi = std::min(n - 1, keyframe + config_.loop_submap_keyframes);
-  const SE2& T_w_j = graph_.poses[static_cast<size_t>(keyframe)];
-  std::vector<Eigen::Vector2d> points;
-  for (int i = lo; i <= hi; ++i) {
-    const SE2 T_j_i = Between(T_w_j, graph_.poses[static_cast<size_t>(i)]);
-    for (const auto& p : keyframes_[static_cast<size_t>(i)].points.points) points.push_back(T_j_i * p);
-  }
-  std::vector<Eigen::Vector2d> thinned;
-  for (int i : VoxelSubsample(points, 0.5 * config_.loop_table.resolution_m)) thinned.push_back(points[static_cast<size_t>(i)]);
-  LoopTarget t;
-  t.keyframe = keyframe;
-  t.table = MakeScoreTable(thinned, config_.loop_table);
-  t.cloud = MakeCloudTarget(std::move(thinned));
-  loop_targets_.push_back(std::move(t));
-  return loop_targets_.back();
 }
 
 void IcpPoseSlam::CloseLoops(double t_s) {

@@ -16,6 +16,7 @@
 
 #include "core/slam_module.hpp"
 #include "slam/adaptive_threshold.hpp"
+#include "slam/back_face.hpp"
 #include "slam/correlative_matcher.hpp"
 #include "slam/edge_information.hpp"
 #include "slam/icp_params.hpp"
@@ -85,6 +86,10 @@ struct IcpPoseSlamConfig {
   double loop_max_runner_up_ratio = 0.95;  ///< ... must stay below this fraction of the match's score
   double loop_max_match_shift_m = 0.1;   ///< [m] ICP may move the correlative match at most this far
   bool loop_reject_window_edge = true;   ///< a correlative optimum on the search window's edge is no closure
+  /// A closure whose new scan sees more than this fraction of its matched points from the back
+  /// of the target's surfaces is false (slam/back_face.hpp: one corridor width over).
+  double loop_max_back_face_fraction = 0.5;
+  BackFaceSetting loop_back_face;        ///< which source points count as matched there
   /// Region loop search (slam/loop_region.hpp): at a keyframe where no candidate's submap
   /// closed a loop, the target is the union of the old keyframes within the new scan's
   /// median range (plus each one's search window) of it, admitted pass by pass where the
@@ -149,6 +154,16 @@ class IcpPoseSlam : public SlamModule {
                          const std::vector<double>& path, double* innovation_m);
   /// The newest keyframe's points, with earlier keyframes' while below loop_min_source_points.
   std::vector<Eigen::Vector2d> LoopSource() const;
+  /// A loop target's points: keyframes `ids` in the frame T_w_frame, those `keep` accepts (all
+  /// when empty), voxel-thinned, each with the position of the keyframe that saw it.
+  struct LoopSubmap {
+    std::vector<Eigen::Vector2d> points, viewpoints;
+  };
+  LoopSubmap LoopSubmapPoints(const std::vector<int>& ids, const SE2& T_w_frame,
+                              const std::function<bool(const Eigen::Vector2d&)>& keep) const;
+  /// The submap as an ICP target, normals towards their viewpoints (slam/back_face.hpp).
+  static IcpTarget LoopCloud(const LoopSubmap& submap);
+  /// The submap of keyframe +- loop_submap_keyframes, cached. (slam/icp_poseslam_loop.cpp)
   const LoopTarget& LoopTargetFor(int keyframe);
   PoseGraphSolveResult Solve(bool marginals = false);
   InformationCaps Caps() const;

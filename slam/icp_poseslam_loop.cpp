@@ -27,6 +27,52 @@ std::vector<Eigen::Vector2d> IcpPoseSlam::LoopSource() const {
   return source;
 }
 
+IcpPoseSlam::LoopSubmap IcpPoseSlam::LoopSubmapPoints(const std::vector<int>& ids, const SE2& T_w_frame,
+                                                      const std::function<bool(const Eigen::Vector2d&)>& keep) const {
+  std::vector<Eigen::Vector2d> points, sensors;  // sensors: where each point was seen from
+  for (int i : ids) {
+    const SE2 T_frame_i = Between(T_w_frame, graph_.poses[static_cast<size_t>(i)]);
+    for (const auto& p : keyframes_[static_cast<size_t>(i)].points.points) {
+      const Eigen::Vector2d q = T_frame_i * p;
+      if (!keep || keep(q)) {
+        points.push_back(q);
+        sensors.push_back(T_frame_i.translation());
+      }
+    }
+  }
+  LoopSubmap out;
+  for (int i : VoxelSubsample(points, 0.5 * config_.loop_table.resolution_m)) {
+    out.points.push_back(points[static_cast<size_t>(i)]);
+    out.viewpoints.push_back(sensors[static_cast<size_t>(i)]);
+  }
+  return out;
+}
+
+IcpTarget IcpPoseSlam::LoopCloud(const LoopSubmap& submap) {
+  IcpTarget cloud = MakeCloudTarget(submap.points);
+  OrientNormalsTowards(&cloud, submap.viewpoints);
+  return cloud;
+}
+
+const IcpPoseSlam::LoopTarget& IcpPoseSlam::LoopTargetFor(int keyframe) {
+  for (const LoopTarget& t : loop_targets_)
+    if (t.keyframe == keyframe) return t;
+  constexpr size_t kCached = 8;
+  if (loop_targets_.size() >= kCached) loop_targets_.erase(loop_targets_.begin());
+  const int n = static_cast<int>(keyframes_.size());
+  std::vector<int> ids;
+  for (int i = std::max(0, keyframe - config_.loop_submap_keyframes);
+       i <= std::min(n - 1, keyframe + config_.loop_submap_keyframes); ++i)
+    ids.push_back(i);
+  const LoopSubmap submap = LoopSubmapPoints(ids, graph_.poses[static_cast<size_t>(keyframe)], nullptr);
+  LoopTarget t;
+  t.keyframe = keyframe;
+  t.table = MakeScoreTable(submap.points, config_.loop_table);
+  t.cloud = LoopCloud(submap);
+  loop_targets_.push_back(std::move(t));
+  return loop_targets_.back();
+}
+
 bool IcpPoseSlam::TryLoop(int from, const std::vector<Eigen::Vector2d>& source, const ScoreTable& table,
                           const std::function<const IcpTarget&()>& cloud, double radius_m, double angle_rad,
                           double* innovation_m) {
@@ -51,6 +97,11 @@ bool IcpPoseSlam::TryLoop(int from, const std::vector<Eigen::Vector2d>& source, 
   LoopVerification v = VerifyLoopClosure(r, guess, radius_m + config_.loop_max_match_shift_m, config_.loop);
   if (v.accepted && (r.T_target_source.translation() - m.T_map_source.translation()).norm() > config_.loop_max_match_shift_m)
     v = {false, "icp left the correlative match"};
+  if (v.accepted) {  // the new scan's own points: its sensor is at their origin
+    const BackFaceResult b = BackFaces(keyframes_.back().points.points, cloud(), r.T_target_source, config_.loop_back_face);
+    estimate_.diagnostics["loop_back_face_fraction"].emplace_back(keyframes_.back().t_s, b.fraction);
+    if (b.fraction > config_.loop_max_back_face_fraction) v = {false, "the scan sees the target's surfaces from behind"};
+  }
   estimate_.loop_closures.push_back({t_old, keyframes_.back().t_s, r.T_target_source, v.accepted});
   if (!v.accepted) return false;
   PoseGraphEdge e;
@@ -130,21 +181,14 @@ bool IcpPoseSlam::CloseLoopInRegion(const std::vector<Eigen::Vector2d>& source,
   const double margin = radius + 3.0 * config_.loop_table.sigma_m;
   lo.array() -= margin;
   hi.array() += margin;
-  std::vector<Eigen::Vector2d> points;
-  for (int i : region.keyframes) {
-    const SE2 T_a_i = Between(T_w_a, graph_.poses[static_cast<size_t>(i)]);
-    for (const auto& p : keyframes_[static_cast<size_t>(i)].points.points) {
-      const Eigen::Vector2d q = T_a_i * p;
-      if ((q.array() >= lo.array()).all() && (q.array() <= hi.array()).all()) points.push_back(q);
-    }
-  }
-  std::vector<Eigen::Vector2d> thinned;
-  for (int i : VoxelSubsample(points, 0.5 * config_.loop_table.resolution_m)) thinned.push_back(points[static_cast<size_t>(i)]);
-  if (thinned.empty()) return false;
-  const ScoreTable table = MakeScoreTable(thinned, config_.loop_table);
+  const LoopSubmap submap = LoopSubmapPoints(region.keyframes, T_w_a, [&](const Eigen::Vector2d& q) {
+    return (q.array() >= lo.array()).all() && (q.array() <= hi.array()).all();
+  });
+  if (submap.points.empty()) return false;
+  const ScoreTable table = MakeScoreTable(submap.points, config_.loop_table);
   std::optional<IcpTarget> cloud;  // built only when the correlative match passes
   const bool added = TryLoop(anchor, source, table, [&]() -> const IcpTarget& {
-    if (!cloud) cloud = MakeCloudTarget(thinned);
+    if (!cloud) cloud = LoopCloud(submap);
     return *cloud;
   }, radius, angle, innovation_m);
   d["loop_region_searches"].emplace_back(t_s, 1.0);
