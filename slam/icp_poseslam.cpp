@@ -65,7 +65,7 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("loop_max_runner_up_ratio", c.loop_max_runner_up_ratio, "-", "ambiguity: runner-up score / best score must stay below this");
   b.Bind("loop_max_match_shift_m", c.loop_max_match_shift_m, "m", "ICP may move the correlative match at most this far");
   b.Bind("loop_reject_window_edge", c.loop_reject_window_edge, "-", "reject a correlative optimum on the search window's edge (the score still rises outwards)");
-  b.Bind("loop_max_back_face_fraction", c.loop_max_back_face_fraction, "-", "reject a closure whose scan sees more than this fraction of its matched points from behind the target's surfaces", AtLeast(0));
+  b.Bind("loop_max_back_face_fraction", c.loop_max_back_face_fraction, "-", "reject a closure whose scan sees more than this fraction of its matched points from behind the target's surfaces (1 = off)", AtLeast(0));
   b.Bind("loop_back_face_max_distance_m", c.loop_back_face.max_distance_m, "m", "back-face check: a scan point this close to the target is matched", Above(0));
   b.Bind("loop_region", c.loop_region, "-", "region loop search where no candidate closed: old keyframes within the scan's median range, passes merged where they agree");
   b.Bind("loop_region_overlap_m", c.loop_region_passes.overlap_m, "m", "region: a pass's point with an admitted point this close is in their overlap", Above(0));

@@ -1,5 +1,6 @@
-// icp-poseslam's loop verification (TryLoop) and its region search (CloseLoopInRegion,
-// slam/loop_region.hpp); the rest of the module is in slam/icp_poseslam.cpp.
+// icp-poseslam's loop targets (submaps with the side each point was seen from), loop
+// verification (TryLoop) and region search (CloseLoopInRegion, slam/loop_region.hpp); the rest
+// of the module is in slam/icp_poseslam.cpp.
 #include <algorithm>
 #include <cmath>
 #include <limits>
