@@ -162,7 +162,7 @@ class IcpPoseSlam : public SlamModule {
   LoopSubmap LoopSubmapPoints(const std::vector<int>& ids, const SE2& T_w_frame,
                               const std::function<bool(const Eigen::Vector2d&)>& keep) const;
   /// The submap as an ICP target, normals towards their viewpoints (slam/back_face.hpp).
-  static IcpTarget LoopCloud(const LoopSubmap& submap);
+  static IcpTarget LoopCloud(LoopSubmap submap);
   /// The submap of keyframe +- loop_submap_keyframes, cached. (slam/icp_poseslam_loop.cpp)
   const LoopTarget& LoopTargetFor(int keyframe);
   PoseGraphSolveResult Solve(bool marginals = false);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "slam/icp_poseslam.hpp"
 
@@ -49,8 +50,8 @@ IcpPoseSlam::LoopSubmap IcpPoseSlam::LoopSubmapPoints(const std::vector<int>& id
   return out;
 }
 
-IcpTarget IcpPoseSlam::LoopCloud(const LoopSubmap& submap) {
-  IcpTarget cloud = MakeCloudTarget(submap.points);
+IcpTarget IcpPoseSlam::LoopCloud(LoopSubmap submap) {
+  IcpTarget cloud = MakeCloudTarget(std::move(submap.points));
   OrientNormalsTowards(&cloud, submap.viewpoints);
   return cloud;
 }
@@ -65,11 +66,11 @@ const IcpPoseSlam::LoopTarget& IcpPoseSlam::LoopTargetFor(int keyframe) {
   for (int i = std::max(0, keyframe - config_.loop_submap_keyframes);
        i <= std::min(n - 1, keyframe + config_.loop_submap_keyframes); ++i)
     ids.push_back(i);
-  const LoopSubmap submap = LoopSubmapPoints(ids, graph_.poses[static_cast<size_t>(keyframe)], nullptr);
+  LoopSubmap submap = LoopSubmapPoints(ids, graph_.poses[static_cast<size_t>(keyframe)], nullptr);
   LoopTarget t;
   t.keyframe = keyframe;
   t.table = MakeScoreTable(submap.points, config_.loop_table);
-  t.cloud = LoopCloud(submap);
+  t.cloud = LoopCloud(std::move(submap));
   loop_targets_.push_back(std::move(t));
   return loop_targets_.back();
 }
