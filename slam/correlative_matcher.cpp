@@ -123,11 +123,17 @@ Eigen::Vector2i ScoreTable::Cell(const Eigen::Vector2d& p) const {
           static_cast<int>(std::floor(std::clamp(f.y(), -1e8, 1e8)))};
 }
 
-ScoreTable MakeScoreTable(const std::vector<Eigen::Vector2d>& map_points, const ScoreTableConfig& config) {
-  if (!(config.resolution_m > 0) || !(config.sigma_m > 0) || config.levels < 1 || config.levels > 12)
-    throw std::invalid_argument("score table: resolution_m and sigma_m must be > 0, levels in [1, 12]");
+ScoreTable MakeScoreTable(const std::vector<Eigen::Vector2d>& map_points, const ScoreTableConfig& config,
+                          const std::vector<Eigen::Vector2d>& viewpoints) {
+  if (!(config.resolution_m > 0) || !(config.sigma_m > 0) || config.levels < 1 || config.levels > 12 ||
+      !(config.unknown_score >= 0 && config.unknown_score <= 1))
+    throw std::invalid_argument("score table: resolution_m and sigma_m must be > 0, levels in [1, 12], unknown_score in [0, 1]");
+  const bool unknown = config.unknown_score > 0;
+  if (unknown && viewpoints.size() != map_points.size())
+    throw std::invalid_argument("score table: unknown_score > 0 needs one viewpoint per map point");
   ScoreTable t;
   t.resolution_m = config.resolution_m;
+  t.outside = static_cast<float>(config.unknown_score);
   t.levels.assign(static_cast<size_t>(config.levels), {});
   if (map_points.empty()) return t;
   Eigen::Vector2d lo = map_points[0], hi = map_points[0];
@@ -152,10 +158,28 @@ ScoreTable MakeScoreTable(const std::vector<Eigen::Vector2d>& map_points, const 
         v = std::min(v, static_cast<float>((centre - p).squaredNorm()));
       }
   }
+  // Observed cells: those a ray from a viewpoint to its point crosses (sampled every half cell).
+  std::vector<unsigned char> seen;
+  if (unknown) {
+    seen.assign(cells, 0);
+    const double step_m = 0.5 * config.resolution_m;
+    for (size_t i = 0; i < map_points.size(); ++i) {
+      const Eigen::Vector2d a = viewpoints[i], ab = map_points[i] - a;
+      const int n = static_cast<int>(std::ceil(std::min(ab.norm(), 1e4) / step_m));
+      for (int k = 0; k <= n; ++k) {
+        const Eigen::Vector2i c = t.Cell(a + ab * (n == 0 ? 1.0 : static_cast<double>(k) / n));
+        if (c.x() >= 0 && c.y() >= 0 && c.x() < t.width && c.y() < t.height)
+          seen[static_cast<size_t>(c.y()) * static_cast<size_t>(t.width) + static_cast<size_t>(c.x())] = 1;
+      }
+    }
+  }
   // Level 0 in place of the squared distances; each pooled level written once, in order
   // (no zero fill first: the tables are large and this runs for every loop submap).
   const double reach2 = reach_m * reach_m, inv = 1.0 / (2.0 * config.sigma_m * config.sigma_m);
-  for (float& v : d2) v = v <= reach2 ? static_cast<float>(std::exp(-v * inv)) : 0.0f;
+  for (size_t i = 0; i < cells; ++i) {
+    float& v = d2[i];
+    v = v <= reach2 ? static_cast<float>(std::exp(-v * inv)) : (unknown && !seen[i] ? t.outside : 0.0f);
+  }
   t.levels[0] = std::move(d2);
   const size_t w = static_cast<size_t>(t.width);
   for (int h = 1; h < config.levels; ++h) {
@@ -165,11 +189,12 @@ ScoreTable MakeScoreTable(const std::vector<Eigen::Vector2d>& map_points, const 
     out.reserve(cells);
     for (size_t y = 0; y < static_cast<size_t>(t.height); ++y) {
       const float* row = in.data() + y * w;
-      // Cells past the table's edge count as 0, and every score is >= 0: they never win.
+      // Cells past the table's edge count as `outside`.
       const float* below = y + s < static_cast<size_t>(t.height) ? row + s * w : nullptr;
       for (size_t x = 0; x < w; ++x) {
         float v = row[x];
         if (x + s < w) v = std::max(v, row[x + s]);
+        if (x + s >= w || !below) v = std::max(v, t.outside);
         if (below) {
           v = std::max(v, below[x]);
           if (x + s < w) v = std::max(v, below[x + s]);

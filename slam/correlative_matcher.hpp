@@ -4,7 +4,9 @@
 // window, without a good initial guess.
 //   score table:  per cell of a grid over the map, exp(-d^2 / (2 sigma^2)) with d the
 //                 distance from the cell centre to the nearest map point (0 beyond 3 sigma);
-//   score:        the mean table value over the source points' cells;
+//   score:        the mean table value over the source points' cells; optionally a cell the
+//                 map never observed (no ray from a map point's viewpoint crossed it, or past
+//                 the table's edge) is worth unknown_score instead of 0;
 //   search:       every rotation in the angular window (step from the scan's extent), every
 //                 translation on the grid in the linear window; depth-first branch-and-bound
 //                 over translations with precomputed max-pooled tables (level h: the max over
@@ -21,6 +23,9 @@ struct ScoreTableConfig {
   double resolution_m = 0.05;  ///< [m] cell size (the translation step of the search)
   double sigma_m = 0.05;       ///< [m] std of the point-to-map distance in the score
   int levels = 5;              ///< max-pooled tables for branch-and-bound (level 0 = the table)
+  /// Value of a cell the map never observed (no ray of it crossed the cell, no point near it);
+  /// 0 = such a cell scores as free space (needs no viewpoints).
+  double unknown_score = 0.0;
 };
 
 /// Score table over a map in its own frame, with its max-pooled levels.
@@ -30,9 +35,12 @@ struct ScoreTable {
   int width = 0, height = 0;
   /// levels[h][y * width + x] = max of levels[0] over cells [x, x + 2^h) x [y, y + 2^h).
   std::vector<std::vector<float>> levels;
-  /// Level-h value at cell (x, y); 0 outside the table.
+  /// Value of every cell past the table's edge (the map's box plus its margin): unknown_score,
+  /// even where a ray from a viewpoint outside the box crossed it.
+  float outside = 0.0f;
+  /// Level-h value at cell (x, y); `outside` outside the table.
   float At(int h, int x, int y) const {
-    if (x < 0 || y < 0 || x >= width || y >= height) return 0.0f;
+    if (x < 0 || y < 0 || x >= width || y >= height) return outside;
     return levels[static_cast<size_t>(h)][static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
   }
   /// Cell of a point: floor((p - origin) / resolution).
@@ -41,7 +49,10 @@ struct ScoreTable {
 
 /// Table over map points (map frame). The table extends past the points by 3 sigma plus
 /// 2^(levels-1) cells, so pooled values next to the border stay exact upper bounds.
-ScoreTable MakeScoreTable(const std::vector<Eigen::Vector2d>& map_points, const ScoreTableConfig& config = {});
+/// viewpoints[i]: where map_points[i] was seen from (needed when config.unknown_score > 0: the
+/// cells on the segment from it to the point are observed).
+ScoreTable MakeScoreTable(const std::vector<Eigen::Vector2d>& map_points, const ScoreTableConfig& config = {},
+                          const std::vector<Eigen::Vector2d>& viewpoints = {});
 
 /// Mean level-0 value over the source points' cells, the source placed at T_map_source.
 double CorrelativeScore(const ScoreTable& table, const std::vector<Eigen::Vector2d>& source, const SE2& T_map_source);

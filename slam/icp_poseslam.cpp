@@ -60,6 +60,7 @@ void BindParams(IcpPoseSlamConfig& c, ParamBinder& b) {
   b.Bind("loop_table_resolution_m", c.loop_table.resolution_m, "m", "correlative search grid cell", Above(0));
   b.Bind("loop_table_sigma_m", c.loop_table.sigma_m, "m", "correlative score: std of the point-to-map distance", Above(0));
   b.Bind("loop_table_levels", c.loop_table.levels, "-", "branch-and-bound levels", AtLeast(1));
+  b.Bind("loop_table_unknown_score", c.loop_table.unknown_score, "-", "correlative score of a cell no ray of the submap crossed (0: scored as free space)", Between(0, 1));
   b.Bind("loop_min_score", c.loop_min_score, "-", "correlative score a closure needs");
   b.Bind("loop_runner_up_radius_m", c.loop_runner_up_radius_m, "m", "ambiguity: runner-up match farther than this from the best");
   b.Bind("loop_max_runner_up_ratio", c.loop_max_runner_up_ratio, "-", "ambiguity: runner-up score / best score must stay below this");

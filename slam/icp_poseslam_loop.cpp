@@ -69,7 +69,7 @@ const IcpPoseSlam::LoopTarget& IcpPoseSlam::LoopTargetFor(int keyframe) {
   LoopSubmap submap = LoopSubmapPoints(ids, graph_.poses[static_cast<size_t>(keyframe)], nullptr);
   LoopTarget t;
   t.keyframe = keyframe;
-  t.table = MakeScoreTable(submap.points, config_.loop_table);
+  t.table = MakeScoreTable(submap.points, config_.loop_table, submap.viewpoints);
   t.cloud = LoopCloud(std::move(submap));
   loop_targets_.push_back(std::move(t));
   return loop_targets_.back();
@@ -187,7 +187,7 @@ bool IcpPoseSlam::CloseLoopInRegion(const std::vector<Eigen::Vector2d>& source,
     return (q.array() >= lo.array()).all() && (q.array() <= hi.array()).all();
   });
   if (submap.points.empty()) return false;
-  const ScoreTable table = MakeScoreTable(submap.points, config_.loop_table);
+  const ScoreTable table = MakeScoreTable(submap.points, config_.loop_table, submap.viewpoints);
   std::optional<IcpTarget> cloud;  // built only when the correlative match passes
   const bool added = TryLoop(anchor, source, table, [&]() -> const IcpTarget& {
     if (!cloud) cloud = LoopCloud(submap);

@@ -52,6 +52,36 @@ TEST(ScoreTable, PooledLevelsAreWindowMaxima) {
       }
 }
 
+// With unknown_score u, a cell no ray crossed (behind a wall, beyond the table) scores u, a
+// cell a ray crossed (free space) 0, a cell at a point the closed form as before; pooled levels
+// stay the maxima over their windows, also across the table's edge.
+TEST(ScoreTable, UnobservedCellsScoreTheUnknownValue) {
+  std::vector<Eigen::Vector2d> wall, viewpoints;
+  for (double y = -1.0; y <= 1.0; y += 0.02) {  // the wall x = 2, seen from the origin
+    wall.emplace_back(2.0, y);
+    viewpoints.emplace_back(0.0, 0.0);
+  }
+  const ScoreTableConfig c{.resolution_m = 0.05, .sigma_m = 0.05, .levels = 4, .unknown_score = 0.3};
+  const ScoreTable t = MakeScoreTable(wall, c, viewpoints);
+  const auto value = [&](double x, double y) { return CorrelativeScore(t, {Eigen::Vector2d(x, y)}, SE2()); };
+  EXPECT_EQ(value(1.7, 0.0), 0.0);                   // in front of the wall: seen free
+  EXPECT_NEAR(value(2.6, 0.0), 0.3, 1e-7);           // behind it: never seen
+  EXPECT_NEAR(value(1.7, 1.2), 0.3, 1e-7);           // outside every ray's fan
+  EXPECT_NEAR(value(40.0, 0.0), 0.3, 1e-7);          // beyond the table
+  EXPECT_GT(value(2.0, 0.0), 0.3);                   // on the wall
+  const ScoreTable free_as_before = MakeScoreTable(wall, {.resolution_m = 0.05, .sigma_m = 0.05, .levels = 4});
+  EXPECT_EQ(CorrelativeScore(free_as_before, {Eigen::Vector2d(2.6, 0.0)}, SE2()), 0.0);
+  for (int h = 1; h < 4; ++h)
+    for (int y = -9; y < t.height + 2; y += 3)
+      for (int x = -9; x < t.width + 2; x += 2) {
+        float m = 0.0f;
+        for (int dy = 0; dy < (1 << h); ++dy)
+          for (int dx = 0; dx < (1 << h); ++dx) m = std::max(m, t.At(0, x + dx, y + dy));
+        ASSERT_EQ(t.At(h, x, y), m) << "level " << h << " cell " << x << "," << y;
+      }
+  EXPECT_THROW(MakeScoreTable(wall, c), std::invalid_argument);  // no viewpoints
+}
+
 TEST(CorrelativeMatcher, BranchAndBoundEqualsExhaustiveOnRandomMaps) {
   for (std::uint64_t seed = 0; seed < 8; ++seed) {
     std::mt19937_64 rng(seed);
@@ -59,7 +89,10 @@ TEST(CorrelativeMatcher, BranchAndBoundEqualsExhaustiveOnRandomMaps) {
     std::vector<Eigen::Vector2d> map, source;
     for (int i = 0; i < 150; ++i) map.emplace_back(u(rng), u(rng));
     for (int i = 0; i < 60; ++i) source.emplace_back(u(rng) * 0.5, u(rng) * 0.5);
-    const ScoreTable t = MakeScoreTable(map, {.resolution_m = 0.1, .sigma_m = 0.1, .levels = 4});
+    // Odd seeds: cells the map's rays (from the origin) never crossed score 0.2.
+    std::vector<Eigen::Vector2d> viewpoints(map.size(), Eigen::Vector2d::Zero());
+    const ScoreTable t = MakeScoreTable(
+        map, {.resolution_m = 0.1, .sigma_m = 0.1, .levels = 4, .unknown_score = seed % 2 ? 0.2 : 0.0}, viewpoints);
     const SE2 guess(v(rng), v(rng), v(rng));
     const CorrelativeSearchConfig c{
         .linear_window_m = 1.0, .angular_window_deg = 10.0, .angular_step_deg = 2.5, .runner_up_radius_m = 0.3};
