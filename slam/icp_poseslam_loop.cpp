@@ -187,6 +187,8 @@ bool IcpPoseSlam::CloseLoopInRegion(const std::vector<Eigen::Vector2d>& source,
     return (q.array() >= lo.array()).all() && (q.array() <= hi.array()).all();
   });
   if (submap.points.empty()) return false;
+  // With loop_table_unknown_score > 0 the rays of points cropped out above are not traced:
+  // the free space only they crossed counts as unobserved.
   const ScoreTable table = MakeScoreTable(submap.points, config_.loop_table, submap.viewpoints);
   std::optional<IcpTarget> cloud;  // built only when the correlative match passes
   const bool added = TryLoop(anchor, source, table, [&]() -> const IcpTarget& {

@@ -14,6 +14,19 @@
 namespace slambox {
 namespace {
 
+// Every pooled level h at (x, y) equals the max of level 0 over [x, x + 2^h) x [y, y + 2^h),
+// on a lattice of cells that reaches past the table's edges.
+void ExpectPooledLevelsAreWindowMaxima(const ScoreTable& t) {
+  for (int h = 1; h < static_cast<int>(t.levels.size()); ++h)
+    for (int y = -9; y < t.height + 2; y += 3)
+      for (int x = -9; x < t.width + 2; x += 2) {
+        float m = 0.0f;
+        for (int dy = 0; dy < (1 << h); ++dy)
+          for (int dx = 0; dx < (1 << h); ++dx) m = std::max(m, t.At(0, x + dx, y + dy));
+        ASSERT_EQ(t.At(h, x, y), m) << "level " << h << " cell " << x << "," << y;
+      }
+}
+
 TEST(ScoreTable, ClosedFormAroundOnePoint) {
   const Eigen::Vector2d p(0.512, -0.237);
   const ScoreTableConfig c{.resolution_m = 0.05, .sigma_m = 0.05, .levels = 3};
@@ -42,14 +55,7 @@ TEST(ScoreTable, PooledLevelsAreWindowMaxima) {
   std::vector<Eigen::Vector2d> map;
   for (int i = 0; i < 40; ++i) map.emplace_back(u(rng), u(rng));
   const ScoreTable t = MakeScoreTable(map, {.resolution_m = 0.05, .sigma_m = 0.04, .levels = 4});
-  for (int h = 1; h < 4; ++h)
-    for (int y = -9; y < t.height + 2; y += 3)
-      for (int x = -9; x < t.width + 2; x += 2) {
-        float m = 0.0f;
-        for (int dy = 0; dy < (1 << h); ++dy)
-          for (int dx = 0; dx < (1 << h); ++dx) m = std::max(m, t.At(0, x + dx, y + dy));
-        ASSERT_EQ(t.At(h, x, y), m) << "level " << h << " cell " << x << "," << y;
-      }
+  ExpectPooledLevelsAreWindowMaxima(t);
 }
 
 // With unknown_score u, a cell no ray crossed (behind a wall, beyond the table) scores u, a
@@ -71,14 +77,7 @@ TEST(ScoreTable, UnobservedCellsScoreTheUnknownValue) {
   EXPECT_GT(value(2.0, 0.0), 0.3);                   // on the wall
   const ScoreTable free_as_before = MakeScoreTable(wall, {.resolution_m = 0.05, .sigma_m = 0.05, .levels = 4});
   EXPECT_EQ(CorrelativeScore(free_as_before, {Eigen::Vector2d(2.6, 0.0)}, SE2()), 0.0);
-  for (int h = 1; h < 4; ++h)
-    for (int y = -9; y < t.height + 2; y += 3)
-      for (int x = -9; x < t.width + 2; x += 2) {
-        float m = 0.0f;
-        for (int dy = 0; dy < (1 << h); ++dy)
-          for (int dx = 0; dx < (1 << h); ++dx) m = std::max(m, t.At(0, x + dx, y + dy));
-        ASSERT_EQ(t.At(h, x, y), m) << "level " << h << " cell " << x << "," << y;
-      }
+  ExpectPooledLevelsAreWindowMaxima(t);
   EXPECT_THROW(MakeScoreTable(wall, c), std::invalid_argument);  // no viewpoints
 }
 
