@@ -104,6 +104,8 @@ bool SolveOnce(LandmarkGraph& g, const LandmarkGraphOptions& options, std::vecto
     if (!problem.HasParameterBlock(it->second.data())) it = g.landmarks.erase(it);
     else ++it;
   }
+  if (options.hold_landmarks)
+    for (auto& [key, m] : g.landmarks) problem.SetParameterBlockConstant(m.data());
 
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
@@ -123,7 +125,8 @@ bool SolveOnce(LandmarkGraph& g, const LandmarkGraphOptions& options, std::vecto
   if (solution.usable && LeaveOutAtTheSingularity(g, left_out)) return false;
 
   solution.pose_covariances.assign(g.poses.size(), Eigen::Matrix3d::Zero());
-  if (!(options.compute_covariance || options.joint_landmark_covariance) || !solution.usable) return true;
+  if (!(options.compute_covariance || options.joint_landmark_covariance) || !solution.usable || options.hold_landmarks)
+    return true;
   // Marginals: selected inversion of the information matrix (slam/sparse_marginals.hpp).
   std::vector<double*> blocks;
   std::vector<std::pair<int, int>> requested;

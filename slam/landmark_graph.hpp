@@ -52,6 +52,8 @@ struct LandmarkGraphOptions {
   /// Ceres stops when an iteration lowers the cost by less than this fraction (Ceres' own
   /// default): two solutions whose chi2 differ by less are the same to the solver.
   double function_tolerance = 1e-6;
+  /// Landmarks held at their guesses: only the poses are solved (no marginals).
+  bool hold_landmarks = false;
 };
 
 struct LandmarkGraphSolution {
