@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <iterator>
-#include <optional>
 
 #include "core/odometry_model.hpp"
+#include "slam/keyframe_decimation.hpp"
 #include "slam/leftover_association.hpp"
 #include "slam/range_bearing.hpp"
 
@@ -20,6 +20,20 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
          "are composed onto the solved graph with the front end's motion, and the solved graph is one more guess of "
          "the end solve (the lowest chi2 is kept)",
          AtLeast(0));
+  b.Bind("periodic_max_keyframes", c.periodic_max_keyframes, "keyframes",
+         "a solve during the run or of a replay keeps every k-th keyframe (and the last), k the smallest that leaves at most this "
+         "many, the odometry between them composed, and comes every solve_every_keyframes x k keyframes (0 = all "
+         "keyframes, every solve_every_keyframes)",
+         AtLeast(0));
+  b.Bind("replay_chi2_per_residual", c.replay_chi2_per_residual, "-",
+         "where the end solve's best guess fits with a chi2 per residual above this (its expectation is below 1), the "
+         "graph's growth is replayed with solves every replay_every_keyframes / 2, x 1 and x 2 keyframes, three more "
+         "guesses (0 = never)",
+         AtLeast(0));
+  b.Bind("replay_every_keyframes", c.replay_every_keyframes, "keyframes",
+         "the middle interval of the replays (past periodic_max_keyframes each solve is of a decimated graph and the "
+         "interval grows with its stride)",
+         AtLeast(2));
   b.Bind("relocalized_guess", c.relocalized_guess, "-",
          "the end solve also starts from the front end's poses re-localized against its final map (landmarks held) "
          "and keeps the guess of the lowest chi2");
@@ -37,10 +51,6 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
          "above this many landmarks after the split, the joint search (cost ~ candidates^2 x pairs) is skipped and "
          "the front end's association kept", AtLeast(0));
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
-}
-
-bool FitsBetter(double chi2, double kept_chi2) {
-  return chi2 < kept_chi2 - std::max(1.0, LandmarkGraphOptions{}.function_tolerance * kept_chi2);
 }
 
 GraphSlam::GraphSlam(const GraphSlamConfig& config) : config_(config), frontend_(config.frontend) {}
@@ -72,6 +82,7 @@ void GraphSlam::Start(const StreamHeader& header) {
   steps_since_keyframe_ = 0;
   travel_since_keyframe_m_ = 0.0;
   skipped_scans_ = 0;
+  last_periodic_solve_ = 0;
   estimate_ = Estimate{};
 }
 
@@ -136,9 +147,14 @@ void GraphSlam::OnLandmarks(const LandmarkEvent& event) {
     ++skipped_scans_;
   }
   if (frontend_.revised_from_scan() >= 0) RebuildFromScan(frontend_.revised_from_scan(), frontend_.partial_estimate());
-  if (used && config_.solve_every_keyframes > 0 && keyframe % config_.solve_every_keyframes == 0) {
-    const LandmarkGraphSolution s = Solve(false);
+  // Every K kept keyframes: past the cap, the decimated graph grows by one keyframe per
+  // `stride`, so the interval grows with it and each solve costs about the same.
+  const int stride = DecimationStride(keyframe, config_.periodic_max_keyframes);
+  if (used && config_.solve_every_keyframes > 0 &&
+      keyframe - last_periodic_solve_ >= config_.solve_every_keyframes * stride) {
+    const LandmarkGraphSolution s = Solve(false, false, false, stride);
     estimate_.diagnostics["solver_iterations"].emplace_back(event.t_s, s.iterations);
+    last_periodic_solve_ = keyframe;
   }
 }
 
@@ -176,7 +192,8 @@ int GraphSlam::GraphKey(int frontend_key) const {
   return key;
 }
 
-LandmarkGraphSolution GraphSlam::Solve(bool with_covariance, bool joint_landmarks, bool hold_landmarks) {
+LandmarkGraphSolution GraphSlam::Solve(bool with_covariance, bool joint_landmarks, bool hold_landmarks,
+                                       int keyframe_stride) {
   // Landmarks: the front end's confirmed ones (tentative and deleted ones are left out,
   // and so are their observations); the guess is the last solution or the EKF's mean.
   graph_.landmarks.clear();
@@ -194,12 +211,19 @@ LandmarkGraphSolution GraphSlam::Solve(bool with_covariance, bool joint_landmark
     const auto solved = solved_landmarks_.find(key);
     graph_.landmarks[key] = solved != solved_landmarks_.end() ? solved->second : guess;
   }
-  LandmarkGraphSolution s = SolveLandmarkGraph(
-      graph_, {.max_iterations = config_.max_iterations,
-               .compute_covariance = config_.compute_covariance && with_covariance,
-               .huber_scale = config_.huber_scale,
-               .joint_landmark_covariance = joint_landmarks,
-               .hold_landmarks = hold_landmarks});
+  const LandmarkGraphOptions options{.max_iterations = config_.max_iterations,
+                                     .compute_covariance = config_.compute_covariance && with_covariance,
+                                     .huber_scale = config_.huber_scale,
+                                     .joint_landmark_covariance = joint_landmarks,
+                                     .hold_landmarks = hold_landmarks};
+  LandmarkGraphSolution s;
+  if (keyframe_stride > 1) {
+    DecimatedGraph d = DecimateKeyframes(graph_, keyframe_stride);
+    s = SolveLandmarkGraph(d.graph, options);
+    SpreadDecimatedSolution(d, graph_);
+  } else {
+    s = SolveLandmarkGraph(graph_, options);
+  }
   solved_landmarks_ = graph_.landmarks;
   return s;
 }
@@ -231,66 +255,11 @@ std::map<std::pair<int, int>, int> GraphSlam::JoinLeftovers(const LandmarkGraphS
   return joined;
 }
 
-void GraphSlam::StartFromTheBestGuess() {
-  // Levenberg-Marquardt from any one guess may stop in a local minimum, so the end solve
-  // starts from each of these and keeps the lowest chi2 (the same association in all):
-  // - the front end's filtered poses. They jump where its loop closes: the filter moves the
-  //   landmarks seen before the closure with the pose, the poses before it stay where the
-  //   filter had them;
-  // - those poses re-localized against the front end's final map (the landmarks held, the
-  //   poses solved under odometry and observations), which removes the jump where that map
-  //   is right (held-out park lm10_7, known ids: chi2 2.7e6 and ATE 5.93 m from the filtered
-  //   poses, 4.0e3 and 0.17 m from these) and misleads where it is not (lm1_7: the filter's
-  //   map 39 m off; 652 from the filtered poses, 1.1e5 from these);
-  // - with periodic solves, the periodically solved graph (iSAM's periodic batch steps,
-  //   Kaess et al. 2008): smooth, but an early solve on little data may fold it (lm2_0).
-  // A later guess replaces the kept one only where it fits better (FitsBetter).
-  struct Solved {
-    double chi2 = 0.0;
-    std::vector<SE2> poses;
-    std::map<int, Eigen::Vector2d> landmarks;
-  };
-  const double t_end = samples_.empty() ? 0.0 : samples_.back().t_s;
-  auto& d = estimate_.diagnostics;
-  std::optional<Solved> best;
-  const char* best_name = "";
-  auto solve_from = [&](const char* name, std::vector<SE2> poses, std::map<int, Eigen::Vector2d> landmarks) {
-    graph_.poses = std::move(poses);
-    solved_landmarks_ = std::move(landmarks);
-    const LandmarkGraphSolution s = Solve(false);
-    d[std::string("end_guess_chi2_") + name].emplace_back(t_end, s.chi2_final);
-    if (s.usable && (!best || FitsBetter(s.chi2_final, best->chi2))) {
-      best = Solved{s.chi2_final, graph_.poses, solved_landmarks_};
-      best_name = name;
-    }
-  };
-  const bool periodic = config_.solve_every_keyframes > 0;
-  std::vector<SE2> incremental_poses = periodic ? graph_.poses : std::vector<SE2>{};
-  std::map<int, Eigen::Vector2d> incremental_landmarks = solved_landmarks_;
-  solve_from("filtered", frontend_poses_, {});
-  if (config_.relocalized_guess) {
-    graph_.poses = frontend_poses_;
-    solved_landmarks_.clear();
-    Solve(false, false, true);  // the poses against the front end's map
-    solve_from("relocalized", graph_.poses, solved_landmarks_);
-  }
-  if (periodic) solve_from("incremental", std::move(incremental_poses), std::move(incremental_landmarks));
-  if (best) {
-    graph_.poses = std::move(best->poses);
-    solved_landmarks_ = std::move(best->landmarks);
-  } else {  // no solve was usable: the filtered poses, as without this search
-    graph_.poses = frontend_poses_;
-    solved_landmarks_.clear();
-  }
-  for (const char* name : {"relocalized", "incremental"})
-    if (d.count(std::string("end_guess_chi2_") + name))
-      d[std::string("end_guess_") + name].emplace_back(t_end, std::string(best_name) == name ? 1.0 : 0.0);
-}
-
 Estimate GraphSlam::Finish() {
   const Estimate front = frontend_.Finish();  // ends a running closure test by the scans so far
   if (frontend_.revised_from_scan() >= 0) RebuildFromScan(frontend_.revised_from_scan(), front);
-  if (config_.solve_every_keyframes > 0 || config_.relocalized_guess) StartFromTheBestGuess();
+  if (config_.solve_every_keyframes > 0 || config_.relocalized_guess || config_.replay_chi2_per_residual > 0)
+    StartFromTheBestGuess();
   LandmarkGraphSolution s;
   int merges = 0;
   std::map<std::pair<int, int>, int> joined_leftovers;  // (scan, detection index) -> landmark key

@@ -1,0 +1,31 @@
+#pragma once
+// A guess for the end solve of slam/graphslam.hpp made after the run: the landmark graph
+// solved as it grew (its first K keyframes, then every K more; iSAM's periodic batch steps,
+// Kaess et al. 2008, replayed). Each solve starts from the last one's solution; the keyframes
+// added since are composed onto it with the front end's motion, which holds what the filter's
+// landmarks corrected, and a landmark seen for the first time starts at its first observation.
+// A loop is then closed while it is fresh, from a smooth graph, instead of at the end from the
+// filter's poses, which jump where it closed (Levenberg-Marquardt can stop in a fold there).
+// Past `max_keyframes` a solve is of every stride-th keyframe (slam/keyframe_decimation.hpp;
+// stride = ceil(keyframes / max_keyframes)) and comes every K x stride keyframes, so each
+// costs about the same and the replay about log(n) of them past the cap.
+#include <vector>
+
+#include "slam/landmark_graph.hpp"
+
+namespace slambox {
+
+struct GrowthReplaySettings {
+  int solve_every_keyframes = 100;  ///< K [keyframes]
+  int max_keyframes = 1000;         ///< [keyframes] solved at most (0 = all)
+  LandmarkGraphOptions solver;      ///< the marginals are never computed
+};
+
+/// `full`: the final graph; its landmarks' keys say which landmarks exist (their positions
+/// are not used), its poses are not used. `frontend_poses`: the front end's pose at each
+/// keyframe. Returns the graph with the poses and landmarks after the replay's last solve
+/// (keyframes after it composed with the front end's motion).
+LandmarkGraph ReplayGrowth(const LandmarkGraph& full, const std::vector<SE2>& frontend_poses,
+                           const GrowthReplaySettings& settings);
+
+}  // namespace slambox

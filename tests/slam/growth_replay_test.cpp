@@ -1,0 +1,91 @@
+// The replay of the graph's growth (slam/growth_replay.hpp): exact data solved from front-end
+// poses that drift and jump, the schedule past the cap, landmarks placed by their first
+// observation, and bad input.
+#include "slam/growth_replay.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "slam/keyframe_decimation.hpp"
+#include "slam/range_bearing.hpp"
+
+namespace slambox {
+namespace {
+
+struct Loop {
+  LandmarkGraph graph;            // exact odometry and observations; poses, landmarks: the truth
+  std::vector<SE2> frontend;      // a filter's poses: drifting in heading, then jumping back
+};
+
+// n keyframes around a circle of radius 10 m (one lap, crossing theta = +-pi), landmarks on a
+// ring of 14 m seen within 8 m.
+Loop MakeLoop(int n) {
+  Loop l;
+  LandmarkGraph& g = l.graph;
+  g.observation_covariance = Eigen::Vector2d(1e-4, 1e-6).asDiagonal();
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n;
+    g.poses.push_back(SE2(10 * std::cos(a), 10 * std::sin(a), NormalizeAngle(a + M_PI / 2)));
+    if (k > 0) g.odometry.push_back({k - 1, Between(g.poses[k - 1], g.poses[k]), Eigen::Vector3d(1e-4, 1e-4, 1e-5).asDiagonal()});
+  }
+  for (int j = 0; j < 12; ++j) g.landmarks[100 + j] = 14.0 * Eigen::Vector2d(std::cos(j * M_PI / 6), std::sin(j * M_PI / 6));
+  for (int k = 0; k < n; ++k)
+    for (const auto& [key, m] : g.landmarks)
+      if ((m - g.poses[k].translation()).norm() < 8.0) g.observations.push_back({k, key, PredictObservation(g.poses[k], m).z});
+  for (int k = 0; k < n; ++k) {
+    const double drift = k < 2 * n / 3 ? 0.01 * k : 0.0;  // 0.01 rad per keyframe, closed at 2/3 of the lap
+    l.frontend.push_back(SE2(g.poses[k].x + 0.3 * drift, g.poses[k].y, g.poses[k].theta + drift));
+  }
+  return l;
+}
+
+TEST(GrowthReplay, ExactDataIsSolvedFromDriftingAndJumpingFrontEndPoses) {
+  const Loop l = MakeLoop(41);  // solves at 5, 10, ..., 40: every keyframe is solved
+  LandmarkGraph full = l.graph;
+  for (auto& [key, m] : full.landmarks) m = Eigen::Vector2d(1e3, 1e3);  // positions are not used
+  const LandmarkGraph g = ReplayGrowth(full, l.frontend, {.solve_every_keyframes = 5, .max_keyframes = 0, .solver = {}});
+  ASSERT_EQ(g.poses.size(), l.graph.poses.size());
+  for (size_t k = 0; k < g.poses.size(); ++k) {
+    EXPECT_LT((g.poses[k].translation() - l.graph.poses[k].translation()).norm(), 1e-5) << k;
+    EXPECT_LT(std::abs(NormalizeAngle(g.poses[k].theta - l.graph.poses[k].theta)), 1e-6) << k;
+  }
+  ASSERT_EQ(g.landmarks.size(), l.graph.landmarks.size());
+  for (const auto& [key, m] : l.graph.landmarks) EXPECT_LT((g.landmarks.at(key) - m).norm(), 1e-5) << key;
+}
+
+TEST(GrowthReplay, PastTheCapTheSolvedKeyframesAreExactAndTheLaterOnesFollowTheFrontEnd) {
+  // K 3, cap 8: a solve every 3 x stride keyframes, stride = ceil(keyframes / 8): at 3, 6,
+  // 12 (stride 2), 21 (3), 36 (5); the last of 0..39 composed after it.
+  const Loop l = MakeLoop(40);
+  const LandmarkGraph g = ReplayGrowth(l.graph, l.frontend, {.solve_every_keyframes = 3, .max_keyframes = 8, .solver = {}});
+  const int last = 36, stride = 5;
+  ASSERT_EQ(DecimationStride(last, 8), stride);
+  for (int k = 0; k <= last; k += stride) {  // the last solve's kept keyframes
+    EXPECT_LT((g.poses[k].translation() - l.graph.poses[k].translation()).norm(), 1e-5) << k;
+    EXPECT_LT(std::abs(NormalizeAngle(g.poses[k].theta - l.graph.poses[k].theta)), 1e-6) << k;
+  }
+  for (int k = last + 1; k < 40; ++k) {  // after it: composed with the front end's motion
+    const SE2 expected = g.poses[k - 1] * (l.frontend[k - 1].inverse() * l.frontend[k]);
+    EXPECT_LT((g.poses[k].vector() - expected.vector()).norm(), 1e-12) << k;
+  }
+  // A landmark first seen after the last solve sits at its first observation.
+  for (const RangeBearingConstraint& o : l.graph.observations) {
+    bool seen_before = false;
+    for (const RangeBearingConstraint& p : l.graph.observations) seen_before |= p.landmark == o.landmark && p.keyframe <= last;
+    if (seen_before) continue;
+    EXPECT_LT((g.landmarks.at(o.landmark) - InverseObservation(g.poses[o.keyframe], o.z).landmark).norm(), 1e-12);
+    break;
+  }
+}
+
+TEST(GrowthReplay, RejectsMismatchedFrontEndPosesAndAZeroInterval) {
+  const Loop l = MakeLoop(12);
+  std::vector<SE2> short_frontend(l.frontend.begin(), l.frontend.end() - 1);
+  EXPECT_THROW(ReplayGrowth(l.graph, short_frontend, {}), std::invalid_argument);
+  EXPECT_THROW(ReplayGrowth(l.graph, l.frontend, {.solve_every_keyframes = 0, .max_keyframes = 0, .solver = {}}), std::invalid_argument);
+  EXPECT_TRUE(ReplayGrowth(LandmarkGraph{}, {}, {}).poses.empty());
+}
+
+}  // namespace
+}  // namespace slambox
