@@ -21,9 +21,9 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
          "the end solve (the lowest chi2 is kept)",
          AtLeast(0));
   b.Bind("periodic_max_keyframes", c.periodic_max_keyframes, "keyframes",
-         "a solve during the run or of a replay keeps every k-th keyframe (and the last), k the smallest that leaves at most this "
-         "many, the odometry between them composed, and comes every solve_every_keyframes x k keyframes (0 = all "
-         "keyframes, every solve_every_keyframes)",
+         "a solve during the run or of a replay keeps every k-th keyframe (and the last), k the smallest that "
+         "leaves at most this many, the odometry between them composed, and comes every solve_every_keyframes x k "
+         "keyframes (0 = all keyframes, every solve_every_keyframes)",
          AtLeast(0));
   b.Bind("replay_chi2_per_residual", c.replay_chi2_per_residual, "-",
          "where the end solve's best guess fits with a chi2 per residual above this (its expectation is below 1), the "

@@ -40,7 +40,8 @@ LandmarkGraph ReplayGrowth(const LandmarkGraph& full, const std::vector<SE2>& fr
   const int n = static_cast<int>(full.poses.size());
   if (static_cast<int>(frontend_poses.size()) != n)
     throw std::invalid_argument("ReplayGrowth: one front-end pose per keyframe is needed");
-  if (settings.solve_every_keyframes < 1) throw std::invalid_argument("ReplayGrowth: solve_every_keyframes must be at least 1");
+  if (settings.solve_every_keyframes < 1)
+    throw std::invalid_argument("ReplayGrowth: solve_every_keyframes must be at least 1");
   LandmarkGraph g;
   g.poses.resize(static_cast<size_t>(n));
   if (n == 0) return g;
