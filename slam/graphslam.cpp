@@ -4,6 +4,7 @@
 #include <iterator>
 
 #include "core/odometry_model.hpp"
+#include "slam/growth_replay.hpp"
 #include "slam/keyframe_decimation.hpp"
 #include "slam/leftover_association.hpp"
 #include "slam/range_bearing.hpp"
@@ -114,12 +115,10 @@ void GraphSlam::AddKeyframe(double t_s) {
   const int from = static_cast<int>(graph_.poses.size()) - 1;
   graph_.odometry.push_back({from, T_keyframe_robot_, covariance_since_keyframe_});
   // Initial guess: the front end's filtered pose; when solving periodically, the last
-  // keyframe's (possibly solved) pose composed with the front end's motion since, which
-  // holds what its landmarks corrected (composed with odometry instead, held-out park lm4_8
-  // ended at 26.4 m ATE, with the front end's motion 5.5 m; slam/README_landmark_slam.md).
+  // keyframe's (possibly solved) pose composed with the front end's motion since.
   frontend_poses_.push_back(frontend_.state().Pose());
   graph_.poses.push_back(config_.solve_every_keyframes > 0
-                             ? graph_.poses[from] * (frontend_poses_[from].inverse() * frontend_poses_.back())
+                             ? ComposedWithFrontEndMotion(graph_.poses[from], frontend_poses_[from], frontend_poses_.back())
                              : frontend_poses_.back());
   keyframe_t_s_.push_back(t_s);
   if (!samples_.empty() && samples_.back().t_s == t_s)  // this odometry event is the keyframe itself
@@ -149,10 +148,10 @@ void GraphSlam::OnLandmarks(const LandmarkEvent& event) {
   if (frontend_.revised_from_scan() >= 0) RebuildFromScan(frontend_.revised_from_scan(), frontend_.partial_estimate());
   // Every K kept keyframes: past the cap, the decimated graph grows by one keyframe per
   // `stride`, so the interval grows with it and each solve costs about the same.
-  const int stride = DecimationStride(keyframe, config_.periodic_max_keyframes);
   if (used && config_.solve_every_keyframes > 0 &&
-      keyframe - last_periodic_solve_ >= config_.solve_every_keyframes * stride) {
-    const LandmarkGraphSolution s = Solve(false, false, false, stride);
+      GrowingGraphSolveDue(keyframe, last_periodic_solve_, config_.solve_every_keyframes, config_.periodic_max_keyframes)) {
+    const LandmarkGraphSolution s =
+        Solve({.keyframe_stride = DecimationStride(keyframe, config_.periodic_max_keyframes)});
     estimate_.diagnostics["solver_iterations"].emplace_back(event.t_s, s.iterations);
     last_periodic_solve_ = keyframe;
   }
@@ -192,8 +191,7 @@ int GraphSlam::GraphKey(int frontend_key) const {
   return key;
 }
 
-LandmarkGraphSolution GraphSlam::Solve(bool with_covariance, bool joint_landmarks, bool hold_landmarks,
-                                       int keyframe_stride) {
+LandmarkGraphSolution GraphSlam::Solve(const SolveRequest& request) {
   // Landmarks: the front end's confirmed ones (tentative and deleted ones are left out,
   // and so are their observations); the guess is the last solution or the EKF's mean.
   graph_.landmarks.clear();
@@ -212,13 +210,13 @@ LandmarkGraphSolution GraphSlam::Solve(bool with_covariance, bool joint_landmark
     graph_.landmarks[key] = solved != solved_landmarks_.end() ? solved->second : guess;
   }
   const LandmarkGraphOptions options{.max_iterations = config_.max_iterations,
-                                     .compute_covariance = config_.compute_covariance && with_covariance,
+                                     .compute_covariance = config_.compute_covariance && request.covariance,
                                      .huber_scale = config_.huber_scale,
-                                     .joint_landmark_covariance = joint_landmarks,
-                                     .hold_landmarks = hold_landmarks};
+                                     .joint_landmark_covariance = request.joint_landmarks,
+                                     .hold_landmarks = request.hold_landmarks};
   LandmarkGraphSolution s;
-  if (keyframe_stride > 1) {
-    DecimatedGraph d = DecimateKeyframes(graph_, keyframe_stride);
+  if (request.keyframe_stride > 1) {
+    DecimatedGraph d = DecimateKeyframes(graph_, request.keyframe_stride);
     s = SolveLandmarkGraph(d.graph, options);
     SpreadDecimatedSolution(d, graph_);
   } else {
@@ -267,7 +265,7 @@ Estimate GraphSlam::Finish() {
   if (MergesInSmoother()) {
     // The front end's association, then every re-observation after leaving view split
     // off (slam/reobservation_split.hpp) and merged back jointly by the smoother.
-    Solve(false);
+    Solve({});
     // Not a key the front end ever issued: a merged-away key still resolves to the landmark
     // it was merged into (GraphKey), so a segment named by it would join that landmark.
     int first_free_key = frontend_.next_key();
@@ -279,12 +277,12 @@ Estimate GraphSlam::Finish() {
       graph_.observations = unsplit;
       split_ = {};
       skipped = true;
-      s = Solve(true);
+      s = Solve({.covariance = true});
     } else {
-      s = Solve(false, true);
+      s = Solve({.joint_landmarks = true});
       merges = MergeInSmoother(s);
-      s = Solve(true);  // the marginals of the final graph (the rounds computed the joint landmark block only)
-      if (config_.smoother_leftovers && !(joined_leftovers = JoinLeftovers(s, front)).empty()) s = Solve(true);
+      s = Solve({.covariance = true});  // the marginals of the final graph (the rounds computed the joint landmark block only)
+      if (config_.smoother_leftovers && !(joined_leftovers = JoinLeftovers(s, front)).empty()) s = Solve({.covariance = true});
     }
     // A split-off segment seen at one keyframe and merged with nothing constrains nothing
     // (its two residuals meet its two unknowns) and is no evidence of a landmark: after
@@ -294,7 +292,7 @@ Estimate GraphSlam::Finish() {
     for (const auto& [key, guess] : split_.guesses)
       if (graph_.landmarks.count(key) && count[key] < 2) graph_.landmarks.erase(key), dropped_.insert(key);
   } else {
-    s = Solve(true);
+    s = Solve({.covariance = true});
   }
   const double t_end = samples_.empty() ? 0.0 : samples_.back().t_s;
   auto& d = estimate_.diagnostics;

@@ -86,10 +86,13 @@ class GraphSlam : public SlamModule {
   };
   bool WantKeyframe() const;
   void AddKeyframe(double t_s);
-  /// `hold_landmarks`: only the poses move (the landmarks stay at their guesses).
-  /// `keyframe_stride` > 1: a graph of every stride-th keyframe is solved (slam/keyframe_decimation.hpp).
-  LandmarkGraphSolution Solve(bool with_covariance, bool joint_landmarks = false, bool hold_landmarks = false,
-                              int keyframe_stride = 1);
+  struct SolveRequest {
+    bool covariance = false;       ///< every pose's and landmark's marginal (compute_covariance permitting)
+    bool joint_landmarks = false;  ///< the joint covariance of all landmarks
+    bool hold_landmarks = false;   ///< only the poses move (the landmarks stay at their guesses)
+    int keyframe_stride = 1;       ///< > 1: a graph of every stride-th keyframe (slam/keyframe_decimation.hpp)
+  };
+  LandmarkGraphSolution Solve(const SolveRequest& request);
   /// Solves from each guess of the end solve (the front end's filtered poses; with
   /// `relocalized_guess` those poses re-localized against the front end's map; with periodic
   /// solves the solved graph; where the best fits badly, three replays of the graph's growth)

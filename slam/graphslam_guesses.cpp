@@ -50,7 +50,7 @@ void GraphSlam::StartFromTheBestGuess() {
   auto solve_from = [&](const std::string& name, std::vector<SE2> poses, std::map<int, Eigen::Vector2d> landmarks) {
     graph_.poses = std::move(poses);
     solved_landmarks_ = std::move(landmarks);
-    const LandmarkGraphSolution s = Solve(false);
+    const LandmarkGraphSolution s = Solve({});
     d["end_guess_chi2_" + name].emplace_back(t_end, s.chi2_final);
     tried.push_back(name);
     if (s.usable && (!best || FitsBetter(s.chi2_final, best->chi2))) {
@@ -65,7 +65,7 @@ void GraphSlam::StartFromTheBestGuess() {
   if (config_.relocalized_guess) {
     graph_.poses = frontend_poses_;
     solved_landmarks_.clear();
-    Solve(false, false, true);  // the poses against the front end's map
+    Solve({.hold_landmarks = true});  // the poses against the front end's map
     solve_from("relocalized", graph_.poses, solved_landmarks_);
   }
   if (periodic) solve_from("incremental", std::move(incremental_poses), std::move(incremental_landmarks));

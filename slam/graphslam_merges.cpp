@@ -91,7 +91,7 @@ int GraphSlam::MergeIfTheGraphAgrees(const std::vector<std::pair<int, int>>& pro
   const std::map<int, Eigen::Vector2d> landmarks_before = solved_landmarks_;
   const double linear_chi2 = PairsDifferenceChi2(joint, pairs);
   for (const auto& [keep, remove] : pairs) merged_into_[remove] = keep;
-  LandmarkGraphSolution next = Solve(false, true);
+  LandmarkGraphSolution next = Solve({.joint_landmarks = true});
   const double k = static_cast<double>(pairs.size());
   const double allowed = linear_chi2 + ChiSquareQuantile(config_.frontend.merge_probability, 2.0 * k);
   if (next.usable && next.observations_left_out <= s.observations_left_out && next.chi2_final - s.chi2_final <= allowed) {

@@ -7,6 +7,10 @@
 
 namespace slambox {
 
+bool GrowingGraphSolveDue(int keyframe, int last_solve_keyframe, int solve_every_keyframes, int max_keyframes) {
+  return keyframe - last_solve_keyframe >= solve_every_keyframes * DecimationStride(keyframe, max_keyframes);
+}
+
 namespace {
 
 // Solves the keyframes 0..last of `full` from the guesses in `g` (poses 0..last valid;
@@ -22,8 +26,8 @@ void SolveUpTo(const LandmarkGraph& full, int last, const GrowthReplaySettings& 
     sub.observations.push_back(o);
     if (!g.landmarks.count(o.landmark))
       g.landmarks[o.landmark] = InverseObservation(sub.poses[static_cast<size_t>(o.keyframe)], o.z).landmark;
+    sub.landmarks[o.landmark] = g.landmarks[o.landmark];
   }
-  for (const RangeBearingConstraint& o : sub.observations) sub.landmarks[o.landmark] = g.landmarks.at(o.landmark);
   DecimatedGraph d = DecimateKeyframes(sub, DecimationStride(last, settings.max_keyframes));
   LandmarkGraphOptions options = settings.solver;
   options.compute_covariance = options.joint_landmark_covariance = false;
@@ -48,8 +52,8 @@ LandmarkGraph ReplayGrowth(const LandmarkGraph& full, const std::vector<SE2>& fr
   g.poses[0] = full.poses[0];
   for (int k = 1, last_solve = 0; k < n; ++k) {
     const auto i = static_cast<size_t>(k);
-    g.poses[i] = g.poses[i - 1] * (frontend_poses[i - 1].inverse() * frontend_poses[i]);
-    if (k - last_solve >= settings.solve_every_keyframes * DecimationStride(k, settings.max_keyframes)) {
+    g.poses[i] = ComposedWithFrontEndMotion(g.poses[i - 1], frontend_poses[i - 1], frontend_poses[i]);
+    if (GrowingGraphSolveDue(k, last_solve, settings.solve_every_keyframes, settings.max_keyframes)) {
       SolveUpTo(full, k, settings, g);
       last_solve = k;
     }
