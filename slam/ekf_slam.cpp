@@ -54,7 +54,9 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("hold_evidence", c.hold_evidence, HoldEvidenceNames(),
          "what lets a held pairing through: landmarks (the product of mu over the distinct landmarks held in "
          "consecutive scans; a repeat of one landmark is no evidence, an unmapped tree stays in its gate) or scans "
-         "(mu over consecutive scans repeating the pairing: independent only for clutter)");
+         "(mu over consecutive scans repeating the pairing: independent only for clutter) or tracks (landmarks, and "
+         "the repeats a landmark's continuing track held since its last used pairing: since it was placed the robot "
+         "drifted less than one detection's gate and missed it no likelier than its gate misses)");
   b.Bind("estimate_detection_rate", c.estimate_detection_rate, "-",
          "unknown ids: a miss in view costs the detection probability at its range (estimated from the confirmed "
          "landmarks, the sensor's detection_prob as prior) times the landmark's detections over those predicted for "
@@ -238,6 +240,7 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
         known_ids_ || (config_.tentative_existence == ExistenceRule::kCounts && config_.confirm_sightings <= 1);
     LandmarkTrack track{next_key_++, known_ids_ ? obs[i].id : -1, 1, 0, 1, confirmed, event.t_s, state_.Landmark(j)};
     track.log_ratio = prior_log_ratio;
+    track.pose_covariance_when_placed = state_.covariance.topLeftCorner<3, 3>();
     if (known_ids_) key_of_id_[obs[i].id] = track.key;
     keys[i] = track.key;
     tracks_.push_back(track);
@@ -283,10 +286,19 @@ std::vector<bool> EkfSlam::HoldPairings(const std::vector<Eigen::Vector2d>& z, s
   if (known_ids_ || !config_.hold_uncertain_pairings || !(clutter_density_per_m2_ > 0))
     return std::vector<bool>(tracks_.size(), false);
   std::vector<int> keys(tracks_.size());
-  for (size_t j = 0; j < tracks_.size(); ++j) keys[j] = tracks_[j].key;
-  return HoldUncertainPairings(state_, z, R_, keys,
-                               {config_.gate_accept_chi2, clutter_density_per_m2_, config_.hold_evidence}, target,
-                               held_streak_);
+  TrackEvidence evidence(tracks_.size());
+  for (size_t j = 0; j < tracks_.size(); ++j) {
+    LandmarkTrack& t = tracks_[j];
+    keys[j] = t.key;
+    if (t.tracked && DriftedSincePlaced(static_cast<int>(j))) t.tracked = false;
+    if (t.tracked) evidence[j] = t.track_log_fake;
+  }
+  const std::vector<bool> held =
+      HoldUncertainPairings(state_, z, R_, keys, evidence,
+                            {config_.gate_accept_chi2, clutter_density_per_m2_, config_.hold_evidence}, target, held_streak_);
+  for (size_t j = 0; j < tracks_.size(); ++j)
+    if (evidence[j]) tracks_[j].track_log_fake = *evidence[j];
+  return held;
 }
 
 int EkfSlam::MergeDuplicates(bool certain_only, bool* uncertain_found) {

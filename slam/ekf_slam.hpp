@@ -64,7 +64,7 @@ struct EkfSlamConfig {
   double visibility_margin_m = 0.5;     ///< [m] a landmark counts as missed only this far inside range_max
   double merge_probability = 0.99;      ///< [-] merge two landmarks whose difference d^2 is below this chi2 quantile (0 = never)
   bool hold_uncertain_pairings = true;  ///< unknown ids: hold a pairing whose gate may hold clutter until more evidence makes that unlikelier than a gate miss
-  HoldEvidence hold_evidence = HoldEvidence::kDistinctLandmarks;  ///< what that evidence is (slam/held_pairings.hpp)
+  HoldEvidence hold_evidence = HoldEvidence::kLandmarksAndTracks;  ///< what that evidence is (slam/held_pairings.hpp)
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
   bool closure_test = true;             ///< unknown ids: a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
@@ -90,6 +90,14 @@ struct LandmarkTrack {
   double expected_detections = 1;  ///< sum of P_D(range) over the scans it was predicted in view (its first: 1)
   double detected_scans = 1;       ///< ... of which it was detected in (its first included)
   double log_ratio = 0;  ///< existence=sprt: log odds real / phantom (prior at its birth + its scans in view)
+  /// Its track continues (slam/held_pairings.hpp): since its creation, or since a pairing
+  /// that placed it after its track had ended, the robot drifted less than one detection's
+  /// gate from where it last placed the landmark (DriftedSincePlaced) and missed it in view
+  /// no likelier than its gate misses a real detection (P_D by range); out of view it ends.
+  bool tracked = true;
+  double track_log_fake = 0;         ///< log P[the track's pairings held since its last used one were fakes] (TrackEvidence)
+  double log_missed_since_seen = 0;  ///< log P[missed in the scans in view since its last sighting | real]
+  Eigen::Matrix3d pose_covariance_when_placed = Eigen::Matrix3d::Zero();  ///< the robot's, after its creation or last pairing
 };
 
 class EkfSlam : public SlamModule {
@@ -132,6 +140,12 @@ class EkfSlam : public SlamModule {
   std::vector<int> AssociateKnownIds(const std::vector<LandmarkObservation>& obs) const;
   /// Discards (holds) the pairings of `target` that may be fakes (slam/held_pairings.hpp); returns the held landmarks.
   std::vector<bool> HoldPairings(const std::vector<Eigen::Vector2d>& z, std::vector<int>& target);
+  /// The landmark's track after a scan: paired (applied), held, or neither, with P_D at its
+  /// predicted range if it was expected in view (else negative).
+  void UpdateTrack(LandmarkTrack& t, bool paired, bool held, double p_detect_in_view) const;
+  /// The robot's drift since landmark j was last placed, seen in its predicted detection,
+  /// leaves one detection's gate in some direction.
+  bool DriftedSincePlaced(int j) const;
   /// `mu`: per landmark the clutter expected in its gate at association time (sprt only).
   void ManageExistence(const std::vector<bool>& matched, const std::vector<bool>& held, const std::vector<double>& mu,
                        double t_s);

@@ -1,6 +1,8 @@
 // The existence side of `ekf-slam` with unknown ids: the clutter expected in each gate,
 // the prior odds of a new landmark, Wald's sequential test and the existence counts per
 // scan (slam/landmark_existence.hpp, slam/detection_rate.hpp; slam/ekf_slam.hpp).
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -41,6 +43,41 @@ bool EkfSlam::ReadyToConfirm(const LandmarkTrack& t) const {
                                                                       : t.sightings >= config_.confirm_sightings;
 }
 
+void EkfSlam::UpdateTrack(LandmarkTrack& t, bool paired, bool held, double p_detect_in_view) const {
+  if (paired) {
+    if (!t.tracked) t.track_log_fake = 0.0;  // placed: a new track starts
+    t.tracked = true;
+    t.pose_covariance_when_placed = state_.covariance.topLeftCorner<3, 3>();
+  }
+  if (paired || (held && t.tracked)) {
+    t.log_missed_since_seen = 0.0;
+    return;
+  }
+  // Held after its track ended, or out of view (the robot may drift away unseen): ended.
+  if (held || p_detect_in_view < 0.0) {
+    t.tracked = false;
+    return;
+  }
+  const double p_detect = config_.estimate_detection_rate ? p_detect_in_view : 1.0;
+  t.log_missed_since_seen += std::log1p(-std::min(p_detect, 1.0));
+  if (t.log_missed_since_seen <= std::log(1.0 - gate_probability_)) t.tracked = false;
+}
+
+bool EkfSlam::DriftedSincePlaced(int j) const {
+  // The drift since the landmark was placed, seen in its predicted detection: J dP J^T,
+  // against one detection's gate: drifted once in some direction it leaves the gate
+  // d^2 < gate_accept_chi2 of noise R, i.e. the largest eigenvalue of L^-1 J dP J^T L^-T
+  // (R = L L^T) is above gate_accept_chi2. Until then the object that made the landmark
+  // is still inside the gate its repeats are paired in.
+  const Eigen::Matrix3d dP = state_.covariance.topLeftCorner<3, 3>() - tracks_[j].pose_covariance_when_placed;
+  const Eigen::Matrix<double, 2, 3> J = PredictObservation(state_.Pose(), state_.Landmark(j)).J_z_pose;
+  const Eigen::LLT<Eigen::Matrix2d> llt(R_);
+  const Eigen::Matrix2d half = llt.matrixL().solve(J * dP * J.transpose());
+  const Eigen::Matrix2d whitened = llt.matrixL().solve(half.transpose());
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(whitened, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff() >
+         config_.gate_accept_chi2;
+}
+
 void EkfSlam::ManageExistence(const std::vector<bool>& matched, const std::vector<bool>& held,
                               const std::vector<double>& mu, double t_s) {
   if (known_ids_) return;  // a known id names a real landmark: never removed
@@ -53,6 +90,7 @@ void EkfSlam::ManageExistence(const std::vector<bool>& matched, const std::vecto
     if (!tentative_sprt && seen) t.confirmed = t.confirmed || ReadyToConfirm(t);
     const Eigen::Vector2d zp = PredictObservation(pose, state_.Landmark(j)).z;
     const bool in_view = ExpectedInView(zp);
+    UpdateTrack(t, matched[j], held[j], in_view ? DetectionProbability(detection_, zp.x()) : -1.0);
     // Not confirmed in time: with counts at any place, with the sequential test only out
     // of view, where no trial can decide it (nor should it stay where a later real
     // observation could be paired with it).

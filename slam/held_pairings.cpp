@@ -10,12 +10,14 @@ namespace slambox {
 
 const EnumNames<HoldEvidence>& HoldEvidenceNames() {
   static const EnumNames<HoldEvidence> names = {{HoldEvidence::kDistinctLandmarks, "landmarks"},
+                                                {HoldEvidence::kLandmarksAndTracks, "tracks"},
                                                 {HoldEvidence::kRepeatedScans, "scans"}};
   return names;
 }
 
 std::vector<bool> HoldUncertainPairings(const EkfSlamState& state, const std::vector<Eigen::Vector2d>& z,
-                                        const Eigen::Matrix2d& R, const std::vector<int>& keys, const HoldTest& test,
+                                        const Eigen::Matrix2d& R, const std::vector<int>& keys,
+                                        TrackEvidence& tracks, const HoldTest& test,
                                         std::vector<int>& target, HeldStreak& streak) {
   const bool repeats = test.evidence == HoldEvidence::kRepeatedScans;
   std::vector<bool> held(state.NumLandmarks(), false);
@@ -30,10 +32,16 @@ std::vector<bool> HoldUncertainPairings(const EkfSlamState& state, const std::ve
       const auto [i, j] = pairs[q];
       const double log_mu =
           std::log(std::min(1.0, ExpectedFalseInGate(S[q], z[i].x(), test.gate_chi2, test.clutter_density_per_m2)));
-      double log_p = log_mu;
+      std::optional<double>& track = tracks[j];
+      const bool tracked = test.evidence == HoldEvidence::kLandmarksAndTracks && track.has_value();
+      double log_p = log_mu + (tracked ? *track : 0.0);
       for (const auto& [key, log_fake] : streak)
         if (repeats ? key == keys[j] : key != keys[j]) log_p += log_fake;
-      if (log_p <= log_allowed) continue;
+      if (log_p <= log_allowed) {
+        if (tracked) *track = 0.0;  // used: it places the landmark, the next repeats start anew
+        continue;
+      }
+      if (tracked) *track += log_mu;
       now[keys[j]] = repeats ? log_p : log_mu;
       target[i] = Association::kDiscard;
       held[j] = true;

@@ -143,6 +143,39 @@ TEST(EkfSlam, NoClutterOrDisabledHoldsNothing) {
   }
 }
 
+/// A standing robot that sees one post alone, 5.83 m ahead, in `scans` consecutive scans
+/// of a noisy detector with clutter (sigma 0.3 m / 2 deg, 1 fake per scan over a 120 deg,
+/// 8 m footprint): each repeat's gate expects mu ~ 0.05 fakes, above the gate's miss 0.01.
+Stream LonePostStream(int scans) {
+  Stream s;
+  s.header.sensors.odometry = OdometryConfig{.rate_hz = 50, .alpha = {0.001, 0.002, 0.001, 0.001}};
+  s.header.sensors.landmarks = LandmarkSensorConfig{.rate_hz = 5, .range_max_m = 8, .fov_deg = 120,
+                                                    .sigma_range_m = 0.3, .sigma_bearing_deg = 2.0,
+                                                    .known_ids = false, .clutter_per_scan = 1.0};
+  const Eigen::Vector2d post(5, 3);
+  double t = 0.0;
+  for (int k = 0; k < scans; ++k) {
+    s.events.push_back(OdometryEvent{t += 0.2, SE2(0, 0, 0)});
+    s.events.push_back(LandmarkEvent{t, {{post.norm(), std::atan2(post.y(), post.x()), -1}}});
+  }
+  return s;
+}
+
+TEST(EkfSlam, ALonePostsTrackIsConfirmedByItsOwnRepeats) {
+  // hold_evidence=tracks: the post's track continues (the robot stands still), so its held
+  // repeats count: held once (mu ~ 0.05), the next used (mu^2 < 0.01), which ends the
+  // streak like a scan that holds nothing, and so on; the post is confirmed. landmarks: a
+  // repeat is no evidence, every pairing is held and the post never becomes a landmark.
+  const Stream stream = LonePostStream(8);
+  const Estimate tracks = RunEkf(stream);
+  EXPECT_EQ(Series(tracks, "held_pairings"), (std::vector<double>{0, 1, 0, 1, 0, 1, 0, 1}));
+  ASSERT_EQ(tracks.landmarks.size(), 1u);
+  EXPECT_LT((tracks.landmarks[0].position - Eigen::Vector2d(5, 3)).norm(), 1e-6);
+  const Estimate landmarks = RunEkf(stream, {.hold_evidence = HoldEvidence::kDistinctLandmarks});
+  EXPECT_EQ(Series(landmarks, "held_pairings"), (std::vector<double>{0, 1, 1, 1, 1, 1, 1, 1}));
+  EXPECT_TRUE(landmarks.landmarks.empty());
+}
+
 TEST(EkfSlam, BothBranchesOfAClosureTestUseTheDensityAtTheFork) {
   // Ten posts mapped at the start (two in the first scan, eight more in the next: births
   // that make unmapped posts likely), the drive that leaves the pose uncertain, then scans

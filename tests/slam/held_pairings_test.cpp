@@ -22,6 +22,7 @@ struct Scene {
   EkfSlamState state;
   Eigen::Matrix2d R = Eigen::Vector2d(0.01, std::pow(M_PI / 180, 2)).asDiagonal();
   std::vector<int> keys = {10, 20};
+  mutable TrackEvidence tracks = {std::nullopt, std::nullopt};
   std::vector<Eigen::Vector2d> z = {{5, 0}, {5, M_PI / 2}};  // each landmark exactly where predicted
   Scene() {
     state.mean = (Eigen::VectorXd(7) << 0, 0, 0, 5, 0, 0, 5).finished();
@@ -35,7 +36,7 @@ struct Scene {
   bool Scan(int j, const HoldTest& test, HeldStreak& streak) const {
     std::vector<int> target = {Association::kDiscard, Association::kDiscard};
     target[j] = j;
-    const std::vector<bool> held = HoldUncertainPairings(state, z, R, keys, test, target, streak);
+    const std::vector<bool> held = HoldUncertainPairings(state, z, R, keys, tracks, test, target, streak);
     EXPECT_EQ(target[j], held[j] ? Association::kDiscard : j);
     return held[j];
   }
@@ -71,6 +72,31 @@ TEST(HeldPairings, RepeatedScansMultiplyRepeatsOnly) {
   EXPECT_TRUE(s.Scan(1, test, streak));   // another landmark: its own streak, 0.05
   EXPECT_FALSE(streak.count(10));         // landmark 0's streak ended with a scan that did not hold it
   EXPECT_FALSE(s.Scan(1, test, streak));  // its repeat: 0.0025, used
+}
+
+TEST(HeldPairings, ATrackMultipliesItsHeldRepeatsUntilOneIsUsed) {
+  Scene s;
+  s.tracks = {0.0, std::nullopt};  // landmark 0's track has just started, landmark 1 has none
+  const HoldTest test{kGate, s.DensityFor(0.05, 0), HoldEvidence::kLandmarksAndTracks};
+  HeldStreak streak;
+  EXPECT_TRUE(s.Scan(0, test, streak));   // 0.05
+  EXPECT_NEAR(*s.tracks[0], std::log(0.05), 1e-9);
+  EXPECT_FALSE(s.Scan(0, test, streak));  // its held repeat counts: 0.05^2 = 0.0025 < 0.01, used
+  EXPECT_EQ(*s.tracks[0], 0.0);           // used: the next repeats start anew
+  EXPECT_TRUE(s.Scan(0, test, streak));
+  EXPECT_NEAR(*s.tracks[0], std::log(0.05), 1e-9);
+  EXPECT_FALSE(s.Scan(1, test, streak));  // landmark 0's held pairing is distinct evidence: 0.0025
+  HeldStreak alone;
+  EXPECT_TRUE(s.Scan(1, test, alone));    // no track: 0.05, and its repeat is no evidence
+  EXPECT_TRUE(s.Scan(1, test, alone));
+  EXPECT_FALSE(s.tracks[1].has_value());
+  // kDistinctLandmarks: tracks are no evidence and are left as they are.
+  s.tracks = {0.0, std::nullopt};
+  const HoldTest landmarks{kGate, s.DensityFor(0.05, 0), HoldEvidence::kDistinctLandmarks};
+  HeldStreak other;
+  EXPECT_TRUE(s.Scan(0, landmarks, other));
+  EXPECT_TRUE(s.Scan(0, landmarks, other));
+  EXPECT_EQ(*s.tracks[0], 0.0);
 }
 
 }  // namespace
