@@ -1,12 +1,10 @@
 #include "slam/ekf_slam.hpp"
 
 #include <cmath>
-#include <tuple>
 
 #include "core/chi_square.hpp"
 #include "core/error.hpp"
 #include "core/odometry_model.hpp"
-#include "slam/landmark_merge.hpp"
 #include "slam/range_bearing.hpp"
 
 namespace slambox {
@@ -48,6 +46,17 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
   b.Bind("merge_probability", c.merge_probability, "-",
          "merge two landmarks whose difference d^2 is below this chi2(2) quantile, unless seen in one scan (0 = never)",
          Range{.min = 0, .max = 1, .max_open = true});
+  b.Bind("constellation_merges", c.constellation_merges, "-",
+         "unknown ids: when a landmark is confirmed, the confirmed landmarks created within the last 2, 4, then 8 "
+         "range_max of travel are matched as one rigid shape onto those last seen before (pairs of equal length seed "
+         "the motions; tolerance sqrt(2 gate_accept_chi2) times a detection's largest standard deviation at "
+         "range_max). A match whose chance under the old landmarks' density (union bound over the motions tried) is "
+         "below the gate's miss probability, with no other match pairing them differently, moves the robot and the "
+         "landmarks seen within the window by its motion (with the fit's uncertainty) and merges its pairs "
+         "(slam/ekf_slam_constellation.cpp; graphslam's front end: off, its smoother re-decides association)");
+  b.Bind("constellation_max_hypotheses", c.constellation_max_hypotheses, "hypotheses",
+         "constellation_merges: search budget; windows whose pairs of equal length make more motions than this "
+         "(the earlier windows' included) are not searched (Victoria Park, 79 m range: millions)", AtLeast(0));
   b.Bind("hold_uncertain_pairings", c.hold_uncertain_pairings, "-",
          "unknown ids: hold a pairing whose gate (given the scan's other pairings) expects more clutter than the gate's "
          "miss probability, until held pairings in consecutive scans (hold_evidence) make a fake unlikelier than that");
@@ -129,6 +138,10 @@ void EkfSlam::Start(const StreamHeader& header) {
   births_ = first_scan_births_ = 0;
   first_birth_scan_ = -1;
   next_key_ = 0;
+  travel_m_ = 0.0;
+  heading_variance_rad2_ = 0.0;
+  constellation_searched_.clear();
+  scan_path_.clear();
   scan_ = 0;
   prior_position_ = header.start_pose.translation();
   estimate_ = Estimate{};
@@ -146,6 +159,8 @@ void EkfSlam::OnOdometry(const OdometryEvent& odometry) {
     J(1, 2) = d.x();
   }
   const Eigen::Matrix3d M = config_.motion_noise_scale * IncrementCovariance(u, alpha_);
+  travel_m_ += std::abs(u.trans);
+  heading_variance_rad2_ += M(0, 0) + M(2, 2);  // rot1 and rot2 turn the heading
   PredictState(state_, p.pose, J, p.J_pose_increment * M * p.J_pose_increment.transpose());
   prior_position_ = p.pose.translation();
   estimate_.trajectory.push_back({odometry.t_s, state_.Pose(), state_.covariance.topLeftCorner<3, 3>(), true});
@@ -217,6 +232,8 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
     matched[j] = true;
     keys[i] = tracks_[j].key;
     ++tracks_[j].sightings;
+    tracks_[j].seen_travel_m = travel_m_;
+    tracks_[j].seen_heading_variance_rad2 = heading_variance_rad2_;
     ++tracks_[j].existence;
   }
   const EkfUpdateResult update = config_.update_iterations > 1 ? IteratedUpdateState(state_, measured, R_, config_.update_iterations)
@@ -241,6 +258,8 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
     LandmarkTrack track{next_key_++, known_ids_ ? obs[i].id : -1, 1, 0, 1, confirmed, event.t_s, state_.Landmark(j)};
     track.log_ratio = prior_log_ratio;
     track.pose_covariance_when_placed = state_.covariance.topLeftCorner<3, 3>();
+    track.created_travel_m = track.seen_travel_m = travel_m_;
+    track.seen_heading_variance_rad2 = heading_variance_rad2_;
     if (known_ids_) key_of_id_[obs[i].id] = track.key;
     keys[i] = track.key;
     tracks_.push_back(track);
@@ -257,6 +276,8 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
   const int merged =
       known_ids_ ? 0 : MergeDuplicates(blocks_closures_ || MayStartClosureTest(), &uncertain_merge);
   uncertain_merge_pending_ = uncertain_merge && MayStartClosureTest();
+  if (!known_ids_ && config_.constellation_merges) scan_path_.emplace_back(travel_m_, state_.Pose());
+  const int recognized = known_ids_ ? 0 : MergeConstellation(event.t_s);
 
   int confirmed = 0;
   for (const auto& t : tracks_) confirmed += t.confirmed ? 1 : 0;
@@ -269,6 +290,7 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
   Record(event.t_s, "new_landmarks", created);
   Record(event.t_s, "discarded_observations", discarded);
   if (!known_ids_) Record(event.t_s, "merged_landmarks", merged);
+  if (recognized > 0) Record(event.t_s, "constellation_merges", recognized);
   if (!known_ids_) Record(event.t_s, "held_pairings", static_cast<double>(std::count(held.begin(), held.end(), true)));
   if (update.applied) {
     Record(event.t_s, "nis", update.nis);
@@ -299,60 +321,6 @@ std::vector<bool> EkfSlam::HoldPairings(const std::vector<Eigen::Vector2d>& z, s
   for (size_t j = 0; j < tracks_.size(); ++j)
     if (evidence[j]) tracks_[j].track_log_fake = *evidence[j];
   return held;
-}
-
-int EkfSlam::MergeDuplicates(bool certain_only, bool* uncertain_found) {
-  if (!(config_.merge_probability > 0.0)) return 0;
-  const double gate = ChiSquareQuantile(config_.merge_probability, 2.0);
-  const Eigen::Vector2d robot = state_.Pose().translation();
-  int merged = 0;
-  // Only around the robot: a duplicate becomes identical to its twin when the loop
-  // closes, i.e. while the robot sees them (this bounds the work to the local map).
-  for (bool again = true; again;) {
-    again = false;
-    std::vector<int> near;
-    for (int j = 0; j < state_.NumLandmarks(); ++j)
-      if ((state_.Landmark(j) - robot).norm() < range_max_m_) near.push_back(j);
-    // The most similar pair first: a landmark can have two twins in its gate, one of them
-    // a new tree next to it (forest seed 218: tree 12's twin at d^2 2.5 and tree 8 at 8.0;
-    // merging the first found took tree 8 and the filter never recovered).
-    std::vector<std::tuple<double, int, int>> pairs;  // (d^2, a, b), a < b: a is the older landmark and is kept
-    for (size_t p = 0; p < near.size(); ++p)
-      for (size_t q = p + 1; q < near.size(); ++q) {
-        const int a = near[p], b = near[q];
-        if (SeenTogether(tracks_[a].key, tracks_[b].key)) continue;
-        const PointDifference difference = DifferenceOf(state_.mean, state_.covariance, 3 + 2 * a, 3 + 2 * b);
-        if (!(difference.d2 < gate)) continue;
-        if (certain_only && ExpectedInGate(difference.C, gate, FakeDensity()) > 1.0 - gate_probability_) {
-          if (uncertain_found != nullptr) *uncertain_found = true;
-          continue;
-        }
-        pairs.emplace_back(difference.d2, a, b);
-      }
-    std::sort(pairs.begin(), pairs.end());
-    for (size_t k = 0; k < pairs.size() && !again; ++k) {
-      const auto [d2, a, b] = pairs[k];
-      if (!MergeLandmarks(state_, a, b)) continue;
-      LandmarkTrack& keep = tracks_[a];
-      const LandmarkTrack& gone = tracks_[b];
-      keep.sightings += gone.sightings;
-      keep.existence += gone.existence;
-      keep.expected_detections += gone.expected_detections;
-      keep.detected_scans += gone.detected_scans;
-      keep.log_ratio += gone.log_ratio;  // independent trials of one landmark
-      keep.confirmed = keep.confirmed || gone.confirmed || ReadyToConfirm(keep);
-      merged_into_[gone.key] = keep.key;
-      // What was seen together with the removed landmark was seen together with the kept one.
-      for (const auto& [k1, k2] : std::vector<std::pair<int, int>>(co_observed_.begin(), co_observed_.end())) {
-        if (k1 == gone.key && k2 != keep.key) co_observed_.insert(std::minmax(keep.key, k2));
-        if (k2 == gone.key && k1 != keep.key) co_observed_.insert(std::minmax(keep.key, k1));
-      }
-      tracks_.erase(tracks_.begin() + b);
-      ++merged;
-      again = true;
-    }
-  }
-  return merged;
 }
 
 int EkfSlam::ResolveKey(int key) const {

@@ -22,7 +22,10 @@
 // still rests on uncertain evidence (a released pairing or a merge whose own gate may hold
 // a fake) is tested on the scans that follow it: the filter forks into a branch with the
 // closure and one without, and Wald's test on their scan likelihoods
-// (slam/scan_likelihood.hpp) keeps one (closure_test, slam/ekf_slam_closure.cpp). Optional
+// (slam/scan_likelihood.hpp) keeps one (closure_test, slam/ekf_slam_closure.cpp). A revisit
+// beyond every gate, mapped a second time, is recognized by its shape: the landmarks created
+// in the last few footprints of travel matched as one rigid constellation onto those last
+// seen before (constellation_merges, slam/ekf_slam_constellation.cpp). Optional
 // FEJ-EKF (Huang, Mourikis & Roumeliotis 2008) or Invariant EKF (Barrau & Bonnabel 2015).
 #include <algorithm>
 #include <cmath>
@@ -32,6 +35,7 @@
 #include <vector>
 
 #include "core/slam_module.hpp"
+#include "slam/constellation_match.hpp"
 #include "slam/data_association.hpp"
 #include "slam/detection_rate.hpp"
 #include "slam/ekf_slam_filter.hpp"
@@ -67,6 +71,11 @@ struct EkfSlamConfig {
   HoldEvidence hold_evidence = HoldEvidence::kLandmarksAndTracks;  ///< what that evidence is (slam/held_pairings.hpp)
   bool estimate_detection_rate = true;  ///< unknown ids: a miss in view costs P_D at its range (over the confirmed landmarks, slam/detection_rate.hpp) times the landmark's detections over those P_D predicted for it, at most 1 (else 1)
   int detection_rate_bands = 10;        ///< [bands] range bands of that estimate over [0, range_max)
+  /// unknown ids: landmarks mapped within the last 2, 4 or 8 range_max of travel that form,
+  /// under one rigid motion, the shape of landmarks last seen before it are merged into them,
+  /// the robot moved with them (place recognition after drift, slam/ekf_slam_constellation.cpp)
+  bool constellation_merges = true;
+  int constellation_max_hypotheses = 100000;  ///< [hypotheses] constellation_merges: search budget per search (windows together)
   bool closure_test = true;             ///< unknown ids: a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
   bool recover_heading = true;         ///< unknown ids: re-associate a scan that contradicts the predicted heading under a wider heading prior (slam/ekf_slam_recovery.cpp)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
@@ -98,6 +107,9 @@ struct LandmarkTrack {
   double track_log_fake = 0;         ///< log P[the track's pairings held since its last used one were fakes] (TrackEvidence)
   double log_missed_since_seen = 0;  ///< log P[missed in the scans in view since its last sighting | real]
   Eigen::Matrix3d pose_covariance_when_placed = Eigen::Matrix3d::Zero();  ///< the robot's, after its creation or last pairing
+  double created_travel_m = 0;  ///< [m] the robot's travel when it was created (constellation_merges)
+  double seen_travel_m = 0;     ///< [m] ... when it was last detected
+  double seen_heading_variance_rad2 = 0;  ///< [rad^2] the odometry's heading variance summed until then (heading_variance_rad2_)
 };
 
 class EkfSlam : public SlamModule {
@@ -164,6 +176,18 @@ class EkfSlam : public SlamModule {
   double NewLandmarkPriorLogRatio() const;
   /// certain_only: merges whose gate may hold a fake are left, and reported in *uncertain_found.
   int MergeDuplicates(bool certain_only = false, bool* uncertain_found = nullptr);
+  /// Conditions the state on landmarks `keep` and `remove` being one and removes `remove`,
+  /// its evidence joining `keep`'s (slam/landmark_merge.hpp); false if C is not positive definite.
+  bool MergeTrackInto(int keep, int remove);
+  /// constellation_merges (slam/ekf_slam_constellation.cpp): the landmarks mapped within the
+  /// last 2, 4 or 8 range_max of travel matched as one shape onto those last seen before; returns the merges.
+  int MergeConstellation(double t_s);
+  /// The old landmarks (indices `old`, positions `old_xy`) a constellation match puts in view
+  /// of the window's scans with no landmark of the window within the tolerance were missed in
+  /// every such scan: log prod (1 - P_D(range)) over them, 0 if none. A right match makes it a
+  /// gate's miss or likelier; a wrong motion lays the recent shape over old landmarks never seen.
+  double LogMissedUnderMatch(const ConstellationMatch& match, const std::vector<int>& old,
+                             const std::vector<Eigen::Vector2d>& old_xy, double tolerance_m, double window_m) const;
 
   // The closure test (slam/ekf_slam_closure.cpp). A pairing or a merge whose own gate
   // expects more fakes than the gate misses real landmarks (mu > 1 - P_G) closes a loop on
@@ -210,6 +234,10 @@ class EkfSlam : public SlamModule {
   double first_scan_births_ = 0;  ///< of them, those of the first scan that had any (NewLandmarkDensity)
   int first_birth_scan_ = -1;     ///< that scan (-1: none yet)
   int next_key_ = 0;
+  double travel_m_ = 0.0;  ///< [m] the odometry's path length so far
+  double heading_variance_rad2_ = 0.0;  ///< [rad^2] the motion model's heading variance summed over every odometry step so far
+  std::vector<std::pair<double, SE2>> scan_path_;  ///< per landmark scan: travel [m] and the pose after its update (constellation_merges)
+  std::vector<int> constellation_searched_;  ///< keys of the recent landmarks of the last constellation search
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction
   Estimate estimate_;

@@ -57,7 +57,10 @@ struct GraphSlamConfig {
   bool smoother_merges = true;      ///< unknown ids: merge duplicate landmarks jointly under the smoother's marginals (slam/smoother_merges.hpp)
   bool smoother_leftovers = true;   ///< unknown ids, after the smoother merges: detections the front end left out join the one landmark the smoothed map puts in their gate (slam/leftover_association.hpp)
   int smoother_merges_max_landmarks = 300;  ///< [-] above this many landmarks after the split, keep the front end's association (the search grows a hypothesis from every candidate pair: ~ candidates^2 x pairs)
-  EkfSlamConfig frontend;           ///< association and tentative-landmark settings (same names as ekf-slam)
+  /// Association and tentative-landmark settings (same names as ekf-slam). The smoother
+  /// revises the front end's association itself (smoother_merges): the front end's place
+  /// recognition (constellation_merges), made for a filter that cannot, is off by default.
+  EkfSlamConfig frontend{.constellation_merges = false};
 };
 void BindParams(GraphSlamConfig& c, ParamBinder& b);
 
