@@ -111,13 +111,9 @@ std::optional<ConstellationMatch> MatchConstellation(std::span<const Eigen::Vect
   const int n = static_cast<int>(recent.size());
   if (tried != nullptr) *tried = settings.earlier_hypotheses;
   if (n < 3 || old.size() < 3 || !(tol > 0)) return std::nullopt;
-  double rho = settings.density_per_m2;
-  if (!(rho > 0)) {
-    Eigen::VectorXd stacked(2 * static_cast<long>(old.size()));
-    for (size_t i = 0; i < old.size(); ++i) stacked.segment<2>(2 * static_cast<long>(i)) = old[i];
-    rho = MapDensity(stacked);
-  }
-  const double p = 1.0 - std::exp(-rho * M_PI * tol * tol);
+  Eigen::VectorXd stacked(2 * static_cast<long>(old.size()));
+  for (size_t i = 0; i < old.size(); ++i) stacked.segment<2>(2 * static_cast<long>(i)) = old[i];
+  const double p = 1.0 - std::exp(-MapDensity(stacked) * M_PI * tol * tol);
 
   // Old pairs by length, up to the longest recent pair (+ 2 tol). A pair shorter than 2 tol
   // fixes no direction (its rotation is uncertain by more than 30 degrees) and seeds nothing.
@@ -143,7 +139,6 @@ std::optional<ConstellationMatch> MatchConstellation(std::span<const Eigen::Vect
   // same length, the rotation between their directions, then the midpoints; those turning by
   // more than max_rotation_rad are not hypotheses (and not counted in H).
   std::vector<SE2> seeds;
-  long total = settings.earlier_hypotheses;
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j) {
       const Eigen::Vector2d d_recent = recent[j] - recent[i];
@@ -157,13 +152,13 @@ std::optional<ConstellationMatch> MatchConstellation(std::span<const Eigen::Vect
           if (std::abs(theta) > settings.max_rotation_rad) continue;
           const Eigen::Vector2d t = 0.5 * (old[oa] + old[ob]) - RotationMatrix(theta) * 0.5 * (recent[i] + recent[j]);
           seeds.emplace_back(t.x(), t.y(), theta);
-          if (settings.max_hypotheses > 0 && ++total > settings.max_hypotheses) {
-            if (tried != nullptr) *tried = total;
+          if (settings.max_hypotheses > 0 && settings.earlier_hypotheses + static_cast<long>(seeds.size()) > settings.max_hypotheses) {
+            if (tried != nullptr) *tried = settings.earlier_hypotheses + static_cast<long>(seeds.size());
             return std::nullopt;
           }
         }
     }
-  total = settings.earlier_hypotheses + static_cast<long>(seeds.size());
+  const long total = settings.earlier_hypotheses + static_cast<long>(seeds.size());
   if (tried != nullptr) *tried = total;
   auto chance = [&](size_t k) {
     return std::min(1.0, static_cast<double>(total) * BinomialUpperTail(n - 2, p, static_cast<int>(k) - 2));

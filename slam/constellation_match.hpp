@@ -9,7 +9,7 @@
 //
 // How often a wrong motion gathers k supporters: its two seeds coincide by construction; each
 // of the other n - 2 recent landmarks lands within tol of some old landmark with
-// p = 1 - exp(-rho pi tol^2) (rho the old landmarks' density), independently, so
+// p = 1 - exp(-rho pi tol^2) (rho the old landmarks' density, MapDensity), independently, so
 // P_k = P[Binomial(n - 2, p) >= k - 2]. Over the H hypotheses of one search (union bound) the
 // best one's chance is at most H P_k. The best hypothesis (most support, then the smallest
 // residual) is accepted when that chance is below `false_match_probability` and no other
@@ -32,7 +32,6 @@ namespace slambox {
 
 struct ConstellationSettings {
   double tolerance_m = 1.0;               ///< [m] a recent landmark supports a motion within this of an old one
-  double density_per_m2 = 0.0;            ///< [1/m^2] the old landmarks' density (MapDensity of them if 0)
   double false_match_probability = 0.01;  ///< accept a match less likely than this to arise by chance
   long earlier_hypotheses = 0;            ///< hypotheses of earlier searches on the same data (counted in the union bound)
   double max_rotation_rad = M_PI;         ///< [rad] motions turning by more are not hypotheses (a prior bound on the drift)

@@ -29,6 +29,7 @@
 // FEJ-EKF (Huang, Mourikis & Roumeliotis 2008) or Invariant EKF (Barrau & Bonnabel 2015).
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <map>
 #include <set>
 #include <string>
@@ -236,7 +237,7 @@ class EkfSlam : public SlamModule {
   int next_key_ = 0;
   double travel_m_ = 0.0;  ///< [m] the odometry's path length so far
   double heading_variance_rad2_ = 0.0;  ///< [rad^2] the motion model's heading variance summed over every odometry step so far
-  std::vector<std::pair<double, SE2>> scan_path_;  ///< per landmark scan: travel [m] and the pose after its update (constellation_merges)
+  std::deque<std::pair<double, SE2>> scan_path_;  ///< per landmark scan of the widest window: travel [m] and the pose after its update (constellation_merges)
   std::vector<int> constellation_searched_;  ///< keys of the recent landmarks of the last constellation search
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   Eigen::Vector2d prior_position_ = Eigen::Vector2d::Zero();  ///< FEJ: position after the last prediction

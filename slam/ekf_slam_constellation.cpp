@@ -74,7 +74,9 @@ void MoveRigidly(EkfSlamState& state, const std::vector<bool>& moved, const SE2&
 }  // namespace
 
 int EkfSlam::MergeConstellation(double t_s) {
-  if (!config_.constellation_merges || known_ids_ || !(config_.merge_probability > 0.0)) return 0;
+  if (!config_.constellation_merges || known_ids_) return 0;
+  while (!scan_path_.empty() && travel_m_ - scan_path_.front().first > kWindows.back() * range_max_m_) scan_path_.pop_front();
+  if (!(config_.merge_probability > 0.0)) return 0;
   // While a closure is tested the branches must differ only in that closure; the rival
   // makes no closure at all.
   if (blocks_closures_ || !closure_rival_.empty()) return 0;
@@ -119,7 +121,7 @@ int EkfSlam::MergeConstellation(double t_s) {
     recent_xy.clear();
     for (const int j : old) old_xy.push_back(state_.Landmark(j));
     for (const int j : recent) recent_xy.push_back(state_.Landmark(j));
-    const ConstellationSettings settings{tolerance_m, 0.0, 1.0 - gate_probability_, tried,
+    const ConstellationSettings settings{tolerance_m, 1.0 - gate_probability_, tried,
                                          std::sqrt(ChiSquareQuantile(gate_probability_, 1.0) * since_rad2),
                                          config_.constellation_max_hypotheses};
     match = MatchConstellation(old_xy, recent_xy, settings, &tried);
