@@ -183,12 +183,6 @@ class EkfSlam : public SlamModule {
   /// constellation_merges (slam/ekf_slam_constellation.cpp): the landmarks mapped within the
   /// last 2, 4 or 8 range_max of travel matched as one shape onto those last seen before; returns the merges.
   int MergeConstellation(double t_s);
-  /// The old landmarks (indices `old`, positions `old_xy`) a constellation match puts in view
-  /// of the window's scans with no landmark of the window within the tolerance were missed in
-  /// every such scan: log prod (1 - P_D(range)) over them, 0 if none. A right match makes it a
-  /// gate's miss or likelier; a wrong motion lays the recent shape over old landmarks never seen.
-  double LogMissedUnderMatch(const ConstellationMatch& match, const std::vector<int>& old,
-                             const std::vector<Eigen::Vector2d>& old_xy, double tolerance_m, double window_m) const;
 
   // The closure test (slam/ekf_slam_closure.cpp). A pairing or a merge whose own gate
   // expects more fakes than the gate misses real landmarks (mu > 1 - P_G) closes a loop on

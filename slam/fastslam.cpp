@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <tuple>
 
@@ -48,6 +49,14 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
   b.Bind("existence_error_prob", c.existence_error_prob, "-",
          "existence=sprt: probability of confirming a phantom and of deleting a real landmark (Wald's bounds)");
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance");
+  b.Bind("constellation_merges", c.constellation_merges, "-",
+         "unknown ids: recognize a revisit mapped a second time by the shape of its landmarks (the best particle's "
+         "map, slam/constellation_revisit.hpp); each particle then moves by its fit and merges the pairs");
+  b.Bind("constellation_max_hypotheses", c.constellation_max_hypotheses, "hypotheses",
+         "constellation_merges: search budget; windows whose pairs of equal length make more motions than this "
+         "are not searched");
+  b.Bind("constellation_gate_prob", c.constellation_gate_prob, "-",
+         "constellation_merges: probability of the heading and tolerance gates; 1 - it bounds a false match");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
   static const EnumNames<FastSlamTrajectory> kTrajectoryNames = {{FastSlamTrajectory::kBest, "best"},
                                                                   {FastSlamTrajectory::kMean, "mean"},
@@ -73,6 +82,9 @@ void Validate(const FastSlamConfig& c, const std::string& name) {
     fail("detection_rate_bands", "needs 1 .. 1000 bands", "e.g. 10");
   if (!(c.existence_error_prob > 0 && c.existence_error_prob < 0.5))
     fail("existence_error_prob", "must lie in (0, 0.5)", "e.g. 0.01");
+  if (!(c.constellation_gate_prob > 0.5 && c.constellation_gate_prob < 1))
+    fail("constellation_gate_prob", "must lie in (0.5, 1)", "e.g. 0.99");
+  if (c.constellation_max_hypotheses < 1) fail("constellation_max_hypotheses", "must be positive", "e.g. 100000");
   if (c.motion_noise_scale < 0) fail("motion_noise_scale", "must not be negative", "e.g. 1");
   if (c.snapshot_period_s < 0) fail("snapshot_period_s", "must not be negative", "0 disables snapshots");
   if (c.visibility_margin_m < 0 || c.candidate_margin_m < 0) fail("visibility_margin_m", "margins must not be negative", "e.g. 0.5");
@@ -135,6 +147,9 @@ void FastSlam::Start(const StreamHeader& header) {
     particles_[i].log_weight = -std::log(static_cast<double>(particles_.size()));
     particles_[i].path = start;
   }
+  travel_m_ = heading_variance_rad2_ = 0.0;
+  scan_travel_.clear();
+  constellation_searched_.clear();
   RecordCloud(0.0);
   next_snapshot_s_ = 0.0;
   scan_ = 0;
@@ -145,6 +160,8 @@ void FastSlam::OnOdometry(const OdometryEvent& odometry) {
   // Decompose folds backward motion, so a noisy in-place turn has rot1 near 0, not ±pi.
   const Eigen::Matrix3d M = config_.motion_noise_scale * IncrementCovariance(u, alpha_);
   const Eigen::Vector3d sd = M.diagonal().cwiseSqrt();
+  travel_m_ += std::abs(u.trans);
+  heading_variance_rad2_ += M(0, 0) + M(2, 2);  // rot1 and rot2 turn the heading
   std::normal_distribution<double> n01(0.0, 1.0);
   for (FastSlamParticle& p : particles_) {
     if (fastslam2_) {  // keep the Gaussian prior of the proposal: P' = G P G^T + V M V^T
@@ -172,6 +189,8 @@ void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
     update_.fake_density_per_m2 = FakeDetectionDensity(
         clutter_per_scan_, births_, scan_, update_.range_max_m * update_.range_max_m * update_.half_fov_rad);
   update_.new_log_ratio = NewLandmarkPriorLogRatio(births_, scan_ + 1.0, clutter_per_scan_);
+  update_.travel_m = travel_m_;
+  update_.heading_variance_rad2 = heading_variance_rad2_;
   double created = 0.0;
   const int best = BestParticle();
   std::vector<std::pair<double, bool>> expected;  // the best particle's, for the detection rate
@@ -192,7 +211,9 @@ void FastSlam::OnLandmarks(const LandmarkEvent& landmarks) {
   for (size_t i = 0; i < particles_.size(); ++i) log_w[i] = particles_[i].log_weight;
   const std::vector<double> w = NormalizeLogWeights(log_w);
   for (size_t i = 0; i < particles_.size(); ++i) particles_[i].log_weight = std::log(w[i]);
-  if (fastslam2_) RecordCloud(t);
+  const int recognized = MergeConstellation(t);
+  if (recognized > 0) Diagnose(t, "constellation_merges", recognized);
+  if (fastslam2_ || recognized > 0) RecordCloud(t);
 
   const bool snapshot = config_.snapshot_period_s > 0 && t >= next_snapshot_s_;
   if (snapshot) Diagnose(t, "map_tree_nodes", static_cast<double>(MapTreeNodes()));  // peak: before resampling
@@ -334,10 +355,16 @@ Estimate FastSlam::Finish() {
   // The best particle's associations (per-particle association: its lineage's), oldest first.
   std::vector<const AssignmentNode*> scans;
   for (const AssignmentNode* n = best.assignments.get(); n; n = n->parent.get()) scans.push_back(n);
+  std::map<int, int> merged_into;  // removed key -> key it was merged into (constellation_merges)
+  for (const KeyMerge* m = best.merges.get(); m; m = m->parent.get()) merged_into[m->removed] = m->kept;
+  auto resolve = [&](int key) {
+    for (auto it = merged_into.find(key); it != merged_into.end(); it = merged_into.find(key)) key = it->second;
+    return key;
+  };
   for (auto it = scans.rbegin(); it != scans.rend(); ++it)
     for (size_t i = 0; i < (*it)->landmark.size(); ++i)
       estimate_.observation_assignments.push_back(
-          {(*it)->scan, static_cast<int>(i), (*it)->landmark[i], (*it)->created[i] != 0});
+          {(*it)->scan, static_cast<int>(i), resolve((*it)->landmark[i]), (*it)->created[i] != 0});
   ForEachLandmark(best.map, [&](int key, const LandmarkGaussian& lm) {
     if (!update_.known_ids && !update_.Confirmed(lm)) return;
     estimate_.landmarks.push_back({key, lm.mean, lm.covariance, true});

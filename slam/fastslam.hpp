@@ -17,6 +17,7 @@
 // landmarks (best particle's map size); map_tree_nodes (distinct live tree nodes of all
 // particles, before resampling) at each particle snapshot.
 #include <array>
+#include <deque>
 #include <random>
 #include <string>
 #include <vector>
@@ -73,6 +74,15 @@ struct FastSlamConfig {
   /// counters where it does (the simulator: the test costs there, same section).
   FastSlamExistence existence = FastSlamExistence::kAuto;
   double existence_error_prob = 0.01;
+  /// Unknown ids: a revisit mapped a second time is recognized by its shape, as ekf-slam's
+  /// (slam/constellation_revisit.hpp), in the best particle's map; every particle holding the
+  /// matched pairs then moves its pose and the landmarks it saw within the window by its own
+  /// fit of the pairs and merges each pair (slam/fastslam_constellation.cpp).
+  bool constellation_merges = true;
+  int constellation_max_hypotheses = 100000;  ///< [hypotheses] constellation_merges: search budget per search
+  /// constellation_merges: the heading gate's probability (1 - it: the false-match probability);
+  /// the tolerance is the 2-dof gate at it (RevisitTolerance).
+  double constellation_gate_prob = 0.99;
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
   FastSlamTrajectory trajectory = FastSlamTrajectory::kBest;  ///< what goes into Estimate::trajectory
 };
@@ -110,6 +120,8 @@ class FastSlam : public SlamModule {
   /// Time of the newest pose node that every particle's path shares (-1: none).
   double CoalescedUntil() const;
   std::vector<PoseEstimate> PathMean() const;
+  /// constellation_merges (slam/fastslam_constellation.cpp): returns the merges of the best particle.
+  int MergeConstellation(double t_s);
 
   FastSlamConfig config_;
   bool fastslam2_;
@@ -123,6 +135,10 @@ class FastSlam : public SlamModule {
   int scan_ = 0;  ///< landmark events processed (ObservationAssignment::scan)
   double clutter_per_scan_ = 0.0;  ///< the detector's (stream header)
   double births_ = 0.0;            ///< landmarks created so far, mean over the particles
+  double travel_m_ = 0.0;               ///< [m] the odometry's travel so far (constellation_merges)
+  double heading_variance_rad2_ = 0.0;  ///< [rad^2] the motion model's heading variance summed over every step so far
+  std::deque<std::pair<double, double>> scan_travel_;  ///< per landmark scan of the widest window: travel [m], time [s]
+  std::vector<int> constellation_searched_;  ///< keys of the recent landmarks of the last constellation search
   Estimate estimate_;
 };
 

@@ -158,6 +158,8 @@ ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<Land
       if (!o.fastslam2) s.log_weight_factor += m.log_likelihood;
       LandmarkGaussian updated = UpdateLandmark(lm, m);
       ++updated.counter;
+      updated.seen_travel_m = o.travel_m;
+      updated.seen_heading_variance_rad2 = o.heading_variance_rad2;
       SetLandmark(p.map, key, updated);
       s.landmark_of[j] = key;
       ++s.matched;
@@ -165,6 +167,8 @@ ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<Land
       const int new_key = o.known_ids ? scan[j].id : p.next_key++;
       LandmarkGaussian created = InitializeLandmark(p.pose, z[j], o.R);
       created.log_ratio = o.new_log_ratio;
+      created.created_travel_m = created.seen_travel_m = o.travel_m;
+      created.seen_heading_variance_rad2 = o.heading_variance_rad2;
       SetLandmark(p.map, new_key, created);
       s.landmark_of[j] = new_key;
       s.creates[j] = 1;

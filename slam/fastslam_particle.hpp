@@ -35,6 +35,13 @@ struct AssignmentNode {
   }
 };
 
+/// The landmarks a lineage merged (place recognition), newest first, shared after
+/// resampling like the path: `removed` became `kept`.
+struct KeyMerge {
+  int removed = 0, kept = 0;
+  std::shared_ptr<const KeyMerge> parent;
+};
+
 struct FastSlamParticle {
   SE2 pose;  ///< T_world_robot: a sample (1.0), or the motion-predicted mean since the last sample (2.0)
   /// FastSLAM 2.0: motion noise accumulated since the pose was last sampled (the prior of
@@ -47,6 +54,7 @@ struct FastSlamParticle {
   int origin = 0;               ///< index of its ancestor among the initial particles
   PathPtr path;
   std::shared_ptr<AssignmentNode> assignments;  ///< what this lineage did with each detection
+  std::shared_ptr<const KeyMerge> merges;       ///< the landmarks this lineage merged
 };
 
 struct ParticleUpdateOptions {
@@ -80,6 +88,10 @@ struct ParticleUpdateOptions {
   /// (where N(z; z_hat, L) >= p0); new landmarks start at `new_log_ratio`, are confirmed
   /// (reported, counted for the rate) at wald.log_confirm and removed at wald.log_delete.
   ExistenceRule existence = ExistenceRule::kCounts;
+  /// Stamped on the landmarks seen or created (LandmarkGaussian): the robot's travel so far
+  /// and dead reckoning's heading variance summed so far.
+  double travel_m = 0.0;
+  double heading_variance_rad2 = 0.0;
   WaldThresholds wald;
   double new_log_ratio = 0.0;           ///< log prior odds of a new landmark (NewLandmarkPriorLogRatio)
   double clutter_density_per_m2 = 0.0;  ///< [1/m^2] clutter_per_scan over the footprint

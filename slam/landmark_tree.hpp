@@ -25,6 +25,11 @@ struct LandmarkGaussian {
   /// With the sequential existence test instead: the log likelihood ratio "real" against
   /// "clutter" of its trials so far (slam/landmark_existence.hpp).
   double log_ratio = 0.0;
+  /// Place recognition (slam/fastslam_constellation.cpp): the robot's travel when the
+  /// landmark was created and last seen, and dead reckoning's heading variance then.
+  double created_travel_m = 0.0;
+  double seen_travel_m = 0.0;
+  double seen_heading_variance_rad2 = 0.0;
 };
 
 struct LandmarkTreeNode {

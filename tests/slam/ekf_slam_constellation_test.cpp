@@ -6,53 +6,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numeric>
 #include <vector>
 
 #include "slam/ekf_slam.hpp"
+#include "tests/slam/scripted_revisit.hpp"
 
 namespace slambox {
 namespace {
 
-const std::vector<Eigen::Vector2d> kTrees = {{3, 1},  {6, -2},  {-4, 3}, {-2, -6}, {7, 4},  {-6, -1},
-                                            {1, 7},  {4, -7},  {-8, 6}, {9, -1},  {-3, -9}, {-9, -5}};
 const SE2 kTrueReturn(-4.0, 0.5, 3.0 * M_PI / 180);
 
-std::vector<LandmarkObservation> SeenFrom(const SE2& pose) {
-  std::vector<LandmarkObservation> z;
-  for (const Eigen::Vector2d& m : kTrees) {
-    const Eigen::Vector2d local = pose.inverse() * m;
-    z.push_back({local.norm(), std::atan2(local.y(), local.x()), -1});
-  }
-  return z;
-}
+using scripted_revisit::kTrees;
+using scripted_revisit::Sum;
 
-/// Noise-free detections; the odometry says the robot drove 30 m out and back to the start
-/// (small alpha: the filter is sure of its pose to decimetres), the truth ends at kTrueReturn.
 Stream RevisitStream(const SE2& true_return = kTrueReturn) {
-  Stream s;
-  s.header.sensors.odometry = OdometryConfig{.rate_hz = 50, .alpha = {1e-5, 1e-5, 1e-4, 1e-5}};
-  s.header.sensors.landmarks = LandmarkSensorConfig{.rate_hz = 5, .range_max_m = 20, .fov_deg = 360,
-                                                    .sigma_range_m = 0.05, .sigma_bearing_deg = 0.5,
-                                                    .known_ids = false, .clutter_per_scan = 0.0};
-  double t = 0.0;
-  for (int k = 0; k < 3; ++k) s.events.push_back(LandmarkEvent{t += 0.2, SeenFrom(SE2())});
-  for (int leg = 0; leg < 2; ++leg) {
-    for (int k = 0; k < 60; ++k) s.events.push_back(OdometryEvent{t += 0.1, SE2(0.5, 0, 0)});
-    s.events.push_back(OdometryEvent{t += 0.1, SE2(0, 0, M_PI - 1e-9)});
-  }
-  for (int k = 0; k < 4; ++k) {
-    s.events.push_back(OdometryEvent{t += 0.1, SE2(0, 0, 0)});
-    s.events.push_back(LandmarkEvent{t, SeenFrom(true_return)});
-  }
-  return s;
-}
-
-double Sum(const Estimate& e, const std::string& name) {
-  const auto it = e.diagnostics.find(name);
-  if (it == e.diagnostics.end()) return 0.0;
-  return std::accumulate(it->second.begin(), it->second.end(), 0.0,
-                         [](double a, const auto& sample) { return a + sample.second; });
+  return scripted_revisit::RevisitStream(true_return, 3, 4);
 }
 
 /// Heading recovery off: it would search the revisit under a wider heading prior first.

@@ -1,0 +1,76 @@
+#pragma once
+// A revisit found by its constellation, for any filter that maps landmarks in one frame
+// (ekf-slam: slam/ekf_slam_constellation.cpp; fastslam: slam/fastslam_constellation.cpp).
+// After drift a filter maps a revisited place a second time: the confirmed landmarks it
+// created within the last 2, 4 or 8 range_max of travel (`recent`) are matched as one rigid
+// shape (slam/constellation_match.hpp) onto the confirmed landmarks last seen before that
+// window (`old`). The windows widen until one decides: a footprint swept once holds few
+// landmarks (`forest`: about 5), too few to rise above the chance of the motions tried.
+//
+// Two priors make the search a test rather than a guess. (1) The filter's heading has
+// drifted from the old landmarks' frame since it last saw them by no more than dead
+// reckoning's would have: the motion model's heading variance summed over the steps since
+// the earliest of them was seen bounds the rotation to its gate. (2) Old landmarks that the
+// match puts in view of the window's scans should have been mapped again there: if they
+// were missed with a probability below the false-match one (the product of 1 - P_D over
+// every such scan), the match is refused (LogMissedUnderRevisit).
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/se2.hpp"
+#include "slam/constellation_match.hpp"
+
+namespace slambox {
+
+/// One confirmed landmark as the search sees it.
+struct RevisitLandmark {
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();  ///< [m] mean in the map frame
+  double created_travel_m = 0;                   ///< [m] the robot's travel when it was created
+  double seen_travel_m = 0;                      ///< [m] the robot's travel when it was last seen
+  double seen_heading_variance_rad2 = 0;         ///< [rad^2] dead reckoning's heading variance summed until then
+};
+
+struct RevisitSettings {
+  double travel_m = 0;               ///< [m] the robot's travel so far
+  double heading_variance_rad2 = 0;  ///< [rad^2] the motion model's heading variance summed over every step so far
+  double range_max_m = 15;           ///< [m] the detector's range: the windows are multiples of it
+  double tolerance_m = 1;            ///< [m] ConstellationSettings::tolerance_m (RevisitTolerance)
+  double gate_probability = 0.99;    ///< the heading gate's probability; 1 - it is the false-match probability
+  long max_hypotheses = 0;           ///< ConstellationSettings::max_hypotheses, over all windows together
+};
+
+struct Revisit {
+  ConstellationMatch match;     ///< pairs index `old` and `recent` below
+  std::vector<int> old, recent; ///< indices into the landmarks searched
+  double window_m = 0;          ///< [m] the window of travel that decided
+};
+
+/// [m] a recent landmark supports a motion within this of an old one: two estimates of one
+/// landmark differ by about two detections' noise, so the gate's radius (d^2 = gate_chi2) for
+/// the difference of two detections at range_max, along the worse of range and bearing.
+double RevisitTolerance(const Eigen::Matrix2d& R, double range_max_m, double gate_chi2);
+
+/// The widest window of travel [m] the search reads (scan poses older than this are unused).
+double RevisitWidestWindow(double range_max_m);
+
+/// True when some landmark created within the widest window is not in `searched` (the recent
+/// landmarks of the last search, replaced by this call's): a match needs it as a supporter.
+bool RevisitWorthSearching(std::span<const RevisitLandmark> confirmed, std::span<const int> keys,
+                           const RevisitSettings& settings, std::vector<int>& searched);
+
+/// The first window whose match passes (1) and MatchConstellation's own rules, or none.
+std::optional<Revisit> FindRevisit(std::span<const RevisitLandmark> confirmed, const RevisitSettings& settings);
+
+/// log P[the old landmarks the match puts in view were all missed]: for each old landmark the
+/// match did not pair and that no window landmark (`window_xy`: every landmark not old,
+/// tentative ones too) lies within tolerance of, sum log(1 - P_D(z)) over the window's scan
+/// poses (`scan_poses`) that would see it at z. `detection_in_view(z)` is P_D at the predicted
+/// (range, bearing) z, 0 outside the field of view.
+double LogMissedUnderRevisit(const Revisit& revisit, std::span<const RevisitLandmark> confirmed,
+                             std::span<const Eigen::Vector2d> window_xy, std::span<const SE2> scan_poses,
+                             double tolerance_m, const std::function<double(const Eigen::Vector2d&)>& detection_in_view);
+
+}  // namespace slambox

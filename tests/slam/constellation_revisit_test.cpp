@@ -1,0 +1,97 @@
+// The revisit search over windows of travel (slam/constellation_revisit.hpp): which
+// landmarks are old and recent, the heading prior, the search trigger and the missed-landmark
+// refusal's closed form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "slam/constellation_revisit.hpp"
+
+namespace slambox {
+namespace {
+
+/// 12 old landmarks seen until travel 10 m, the same 12 mapped again (moved by `drift`)
+/// created at travel 100 m; the robot is at travel 110 m with range_max 10 m (windows 20,
+/// 40, 80 m: the first already separates old from recent).
+std::vector<RevisitLandmark> TwoMaps(const SE2& drift) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-15.0, 15.0);
+  std::vector<RevisitLandmark> out;
+  for (int k = 0; k < 12; ++k) out.push_back({Eigen::Vector2d(u(rng), u(rng)), 0.0, 10.0, 0.01});
+  for (int k = 0; k < 12; ++k) out.push_back({drift.inverse() * out[k].xy, 100.0, 110.0, 0.2});
+  return out;
+}
+
+RevisitSettings Settings() {
+  return {.travel_m = 110.0, .heading_variance_rad2 = 0.2, .range_max_m = 10.0, .tolerance_m = 0.5,
+          .gate_probability = 0.99, .max_hypotheses = 0};
+}
+
+TEST(ConstellationRevisit, TheRecentMapIsMatchedOntoTheOldInTheNarrowestWindow) {
+  const SE2 drift(3.0, -2.0, 0.1);
+  const std::vector<RevisitLandmark> maps = TwoMaps(drift);
+  const std::optional<Revisit> r = FindRevisit(maps, Settings());
+  ASSERT_TRUE(r.has_value());
+  EXPECT_DOUBLE_EQ(r->window_m, 20.0);
+  ASSERT_EQ(r->old.size(), 12u);
+  ASSERT_EQ(r->recent.size(), 12u);
+  EXPECT_EQ(r->match.pairs.size(), 12u);
+  for (const auto& [o, c] : r->match.pairs) EXPECT_EQ(r->recent[c], r->old[o] + 12);
+  EXPECT_NEAR(r->match.T_old_recent.x, drift.x, 1e-9);
+  EXPECT_NEAR(r->match.T_old_recent.y, drift.y, 1e-9);
+  EXPECT_NEAR(r->match.T_old_recent.theta, drift.theta, 1e-9);
+}
+
+TEST(ConstellationRevisit, ATurnBeyondTheHeadingDriftSinceTheOldWereSeenIsNoHypothesis) {
+  // Heading variance since the old landmarks were seen: 0.2 - 0.01 rad^2, a 99 % gate of
+  // sqrt(6.63 * 0.19) = 1.12 rad. A turn of 1.3 rad is outside, 1.0 inside.
+  EXPECT_FALSE(FindRevisit(TwoMaps(SE2(3.0, -2.0, 1.3)), Settings()).has_value());
+  EXPECT_TRUE(FindRevisit(TwoMaps(SE2(3.0, -2.0, 1.0)), Settings()).has_value());
+}
+
+TEST(ConstellationRevisit, FewerThanThreeOldLandmarksEndTheSearch) {
+  std::vector<RevisitLandmark> maps = TwoMaps(SE2(1.0, 0.0, 0.0));
+  maps.erase(maps.begin() + 2, maps.begin() + 12);  // 2 old, 12 recent
+  EXPECT_FALSE(FindRevisit(maps, Settings()).has_value());
+}
+
+TEST(ConstellationRevisit, ASearchIsWorthItOnlyWhenALandmarkJoinedTheWidestWindow) {
+  const std::vector<RevisitLandmark> maps = TwoMaps(SE2(1.0, 0.0, 0.0));
+  std::vector<int> keys(maps.size());
+  for (size_t k = 0; k < keys.size(); ++k) keys[k] = static_cast<int>(k);
+  std::vector<int> searched;
+  EXPECT_TRUE(RevisitWorthSearching(maps, keys, Settings(), searched));
+  EXPECT_EQ(searched.size(), 12u);  // created within 80 m of travel: the recent 12
+  EXPECT_FALSE(RevisitWorthSearching(maps, keys, Settings(), searched));
+  std::vector<RevisitLandmark> more = maps;
+  more.push_back({Eigen::Vector2d(0, 0), 109.0, 110.0, 0.2});
+  keys.push_back(99);
+  EXPECT_TRUE(RevisitWorthSearching(more, keys, Settings(), searched));
+  EXPECT_EQ(searched.size(), 13u);
+}
+
+TEST(ConstellationRevisit, AnOldLandmarkInViewAndNeverMappedCostsOneMinusPdPerScan) {
+  // Old landmarks 0..2 are paired; old landmark 3 at (5, 0) is not. Under the identity match
+  // it lies 5 m ahead of each of 4 scan poses at the origin; P_D 0.9 in view gives
+  // log(0.1) per scan. A window landmark within tolerance of it, or a detector that does not
+  // see it, costs nothing.
+  std::vector<RevisitLandmark> confirmed = {{{0, 1}}, {{1, 0}}, {{0, -1}}, {{5, 0}}};
+  Revisit r;
+  r.old = {0, 1, 2, 3};
+  r.match.pairs = {{0, 0}, {1, 1}, {2, 2}};
+  const std::vector<SE2> scans(4, SE2());
+  auto pd = [](const Eigen::Vector2d& z) { return z.x() < 10.0 ? 0.9 : 0.0; };
+  const std::vector<Eigen::Vector2d> window = {{0, 1}, {1, 0}, {0, -1}};
+  EXPECT_NEAR(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, pd), 4.0 * std::log(0.1), 1e-12);
+  std::vector<Eigen::Vector2d> with_it = window;
+  with_it.emplace_back(5.3, 0.0);
+  EXPECT_EQ(LogMissedUnderRevisit(r, confirmed, with_it, scans, 0.5, pd), 0.0);
+  EXPECT_EQ(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, [](const Eigen::Vector2d&) { return 0.0; }), 0.0);
+  EXPECT_NEAR(RevisitTolerance(Eigen::Vector2d(0.01, 1e-4).asDiagonal(), 20.0, 9.21),
+              std::sqrt(2.0 * 9.21 * 0.04), 1e-12);
+}
+
+}  // namespace
+}  // namespace slambox
