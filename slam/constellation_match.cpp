@@ -97,6 +97,11 @@ std::pair<SE2, Support> Refined(const SE2& T, Support s, std::span<const Eigen::
   return {T, std::move(s)};
 }
 
+/// [m] how far motion T moves the anchor (the robot).
+double AnchorShift(const SE2& T, const ConstellationSettings& settings) {
+  return (T * settings.anchor_xy - settings.anchor_xy).norm();
+}
+
 struct OldPair {
   double length_m;
   int a, b;
@@ -151,6 +156,7 @@ std::optional<ConstellationMatch> MatchConstellation(std::span<const Eigen::Vect
           const double theta = NormalizeAngle(std::atan2(d_old.y(), d_old.x()) - std::atan2(d_recent.y(), d_recent.x()));
           if (std::abs(theta) > settings.max_rotation_rad) continue;
           const Eigen::Vector2d t = 0.5 * (old[oa] + old[ob]) - RotationMatrix(theta) * 0.5 * (recent[i] + recent[j]);
+          if (AnchorShift(SE2(t.x(), t.y(), theta), settings) > settings.max_anchor_shift_m) continue;
           seeds.emplace_back(t.x(), t.y(), theta);
           if (settings.max_hypotheses > 0 && settings.earlier_hypotheses + static_cast<long>(seeds.size()) > settings.max_hypotheses) {
             if (tried != nullptr) *tried = settings.earlier_hypotheses + static_cast<long>(seeds.size());
@@ -183,7 +189,8 @@ std::optional<ConstellationMatch> MatchConstellation(std::span<const Eigen::Vect
     Support s = SupportOf(T, recent, grid);
     if (s.pairs.size() < static_cast<size_t>(k_floor)) continue;
     auto [T_refined, support] = Refined(T, std::move(s), old, recent, grid);
-    if (std::abs(T_refined.theta) > settings.max_rotation_rad) continue;
+    if (std::abs(T_refined.theta) > settings.max_rotation_rad || AnchorShift(T_refined, settings) > settings.max_anchor_shift_m)
+      continue;
     kept.push_back({T_refined, std::move(support)});
   }
   if (kept.empty()) return std::nullopt;

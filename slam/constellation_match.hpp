@@ -15,12 +15,14 @@
 // residual) is accepted when that chance is below `false_match_probability` and no other
 // hypothesis that passes pairs one of its landmarks differently (a repeated pattern: two
 // places fit, so neither is known). A prior bound on the rotation (the drift's) removes the
-// motions beyond it from the hypotheses and from H. The bound is a union bound under
+// motions beyond it from the hypotheses and from H, and so does a bound on how far the motion
+// moves the robot (max_anchor_shift_m). The bound is a union bound under
 // independence: a park whose landmarks are not Poisson scattered (rows, clusters) and a
 // tolerance near their spacing make a wrong match likelier than it says (held-out park
 // lm3_0: 16 of 23 landmarks fitted a motion turning by 134 degrees, at a bound of 0.008).
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <span>
 #include <utility>
@@ -36,6 +38,10 @@ struct ConstellationSettings {
   long earlier_hypotheses = 0;            ///< hypotheses of earlier searches on the same data (counted in the union bound)
   double max_rotation_rad = M_PI;         ///< [rad] motions turning by more are not hypotheses (a prior bound on the drift)
   long max_hypotheses = 0;                ///< search budget: more hypotheses than this (earlier ones included) and none is tried (0 = no limit)
+  /// [m] motions that move `anchor_xy` (the robot) by more are not hypotheses either: the
+  /// drift's prior bound at the robot (infinity: none).
+  double max_anchor_shift_m = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d anchor_xy = Eigen::Vector2d::Zero();  ///< [m] where max_anchor_shift_m is measured
 };
 
 struct ConstellationMatch {

@@ -48,16 +48,23 @@ std::optional<Revisit> FindRevisit(std::span<const RevisitLandmark> confirmed, c
     }
     if (revisit.old.size() < 3) break;
     if (revisit.recent.size() < 3) continue;
-    double since_rad2 = 0.0;  // prior (1): dead reckoning's heading variance since the earliest old sighting
-    for (const int j : revisit.old)
+    double since_rad2 = 0.0, since_m = 0.0;  // prior (1): dead reckoning's heading variance and travel since the earliest old sighting
+    for (const int j : revisit.old) {
       since_rad2 = std::max(since_rad2, settings.heading_variance_rad2 - confirmed[j].seen_heading_variance_rad2);
+      since_m = std::max(since_m, settings.travel_m - confirmed[j].seen_travel_m);
+    }
     old_xy.clear();
     recent_xy.clear();
     for (const int j : revisit.old) old_xy.push_back(confirmed[j].xy);
     for (const int j : revisit.recent) recent_xy.push_back(confirmed[j].xy);
-    const ConstellationSettings match_settings{settings.tolerance_m, 1.0 - settings.gate_probability, tried,
-                                               std::sqrt(ChiSquareQuantile(settings.gate_probability, 1.0) * since_rad2),
-                                               settings.max_hypotheses};
+    const ConstellationSettings match_settings{
+        settings.tolerance_m,
+        1.0 - settings.gate_probability,
+        tried,
+        std::sqrt(ChiSquareQuantile(settings.gate_probability, 1.0) * since_rad2),
+        settings.max_hypotheses,
+        std::max(settings.tolerance_m, std::sqrt(ChiSquareQuantile(settings.gate_probability, 2.0) * since_rad2) * since_m),
+        settings.robot_xy};
     std::optional<ConstellationMatch> match = MatchConstellation(old_xy, recent_xy, match_settings, &tried);
     if (match) {
       revisit.match = std::move(*match);

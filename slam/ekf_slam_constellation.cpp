@@ -84,7 +84,7 @@ int EkfSlam::MergeConstellation(double t_s) {
     index.push_back(static_cast<int>(j));
     keys.push_back(t.key);
   }
-  const RevisitSettings settings{travel_m_, heading_variance_rad2_, range_max_m_,
+  const RevisitSettings settings{travel_m_, heading_variance_rad2_, state_.Pose().translation(), range_max_m_,
                                  RevisitTolerance(R_, range_max_m_, config_.gate_accept_chi2), gate_probability_,
                                  config_.constellation_max_hypotheses};
   if (!RevisitWorthSearching(confirmed, keys, settings, constellation_searched_)) return 0;

@@ -103,6 +103,7 @@ int FastSlam::MergeConstellation(double t_s) {
   });
   const RevisitSettings settings{travel_m_,
                                  heading_variance_rad2_,
+                                 b.pose.translation(),
                                  update_.range_max_m,
                                  RevisitTolerance(update_.R, update_.range_max_m,
                                                   ChiSquareQuantile(config_.constellation_gate_prob, 2.0)),

@@ -51,6 +51,21 @@ TEST(ConstellationRevisit, ATurnBeyondTheHeadingDriftSinceTheOldWereSeenIsNoHypo
   EXPECT_TRUE(FindRevisit(TwoMaps(SE2(3.0, -2.0, 1.0)), Settings()).has_value());
 }
 
+TEST(ConstellationRevisit, AShiftOfTheRobotBeyondTheHeadingDriftOverTheTravelIsNoHypothesis) {
+  // Heading variance since the old landmarks were seen 1e-4 rad^2 over 100 m of travel: the
+  // robot (at the origin) may move by sqrt(chi2_2(0.99) * 1e-4) * 100 = 3.03 m. A drift of
+  // (3, -2) moves it 3.6 m, one of (2, -1) 2.24 m.
+  RevisitSettings settings = Settings();
+  settings.heading_variance_rad2 = 0.0101;
+  EXPECT_FALSE(FindRevisit(TwoMaps(SE2(3.0, -2.0, 0.01)), settings).has_value());
+  EXPECT_TRUE(FindRevisit(TwoMaps(SE2(2.0, -1.0, 0.01)), settings).has_value());
+  // Measured at the robot: a turn by 0.02 rad about the origin leaves a robot there in place
+  // and moves one at (200, 0) by 4 m.
+  EXPECT_TRUE(FindRevisit(TwoMaps(SE2(0.0, 0.0, 0.02)), settings).has_value());
+  settings.robot_xy = Eigen::Vector2d(200.0, 0.0);
+  EXPECT_FALSE(FindRevisit(TwoMaps(SE2(0.0, 0.0, 0.02)), settings).has_value());
+}
+
 TEST(ConstellationRevisit, FewerThanThreeOldLandmarksEndTheSearch) {
   std::vector<RevisitLandmark> maps = TwoMaps(SE2(1.0, 0.0, 0.0));
   maps.erase(maps.begin() + 2, maps.begin() + 12);  // 2 old, 12 recent
