@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/limits.hpp"
 #include "core/odometry_model.hpp"
+#include "slam/constellation_revisit.hpp"
 #include "slam/landmark_existence.hpp"
 #include "slam/particle_weights.hpp"
 #include "slam/range_bearing.hpp"
@@ -32,6 +33,9 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
          "existence counters: a landmark should have been seen within range_max - margin");
   b.Bind("candidate_margin_m", c.candidate_margin_m, "m", "association candidates lie within range_max + margin");
   b.Bind("report_min_counter", c.report_min_counter, "-", "unknown ids: report landmarks whose counter reached this");
+  b.Bind("keep_confirmed", c.keep_confirmed, "-",
+         "unknown ids, existence=counts: misses do not bring a reported landmark last seen more than 8 range_max of "
+         "travel ago below report_min_counter (it stays mapped for a revisit to be matched against)");
   static const EnumNames<DetectionRateUse> kRateNames = {
       {DetectionRateUse::kAuto, "auto"}, {DetectionRateUse::kAlways, "true"}, {DetectionRateUse::kNever, "false"}};
   b.Bind("estimate_detection_rate", c.estimate_detection_rate, kRateNames,
@@ -126,6 +130,8 @@ void FastSlam::Start(const StreamHeader& header) {
       (config_.estimate_detection_rate == DetectionRateUse::kAuto && !pd_stated);
   update_.detection = MakeDetectionRate(lm.range_max_m, config_.detection_rate_bands, lm.detection_prob);
   update_.confirmed_counter = config_.report_min_counter;
+  update_.keep_confirmed_unseen_m =
+      config_.keep_confirmed ? RevisitWidestWindow(lm.range_max_m) : std::numeric_limits<double>::infinity();
   update_.existence = config_.existence == FastSlamExistence::kSequentialTest ||
                               (config_.existence == FastSlamExistence::kAuto && !pd_stated)
                           ? ExistenceRule::kSequentialTest

@@ -58,6 +58,13 @@ struct FastSlamConfig {
   double visibility_margin_m = 0.5;  ///< [m] counters: "should have been seen" within range_max - margin
   double candidate_margin_m = 2.0;   ///< [m] association candidates: means within range_max + margin
   int report_min_counter = 10;       ///< unknown ids: report landmarks whose counter reached this (10 Hz: ~1 s net sightings)
+  /// Unknown ids, existence by the counters: misses do not bring a reported landmark that was
+  /// last seen before the revisit search's widest window (RevisitWidestWindow: 8 range_max of
+  /// travel) below report_min_counter, so it stays mapped. Whether it should have been seen
+  /// rests on a pose that has drifted since; deleting it erases the old map a revisit must be
+  /// matched against (constellation_merges; slam/README_fastslam.md). Landmarks seen within
+  /// the window (a duplicate, a confirmed phantom) are deleted by their misses as before.
+  bool keep_confirmed = true;
   double motion_noise_scale = 1.0;   ///< factor on the odometry model's covariance
   /// Unknown ids: a miss in view costs the counter P_D at the landmark's range, estimated
   /// per range band from the best particle's landmarks whose counter reached

@@ -82,7 +82,8 @@ double ExistenceTrial(const PredictedMeasurement& predicted, bool detected, cons
 
 // Thrun 13.2 lines 25-31: a landmark in range that should have been seen but was not
 // loses one count (with an estimated detection rate: the detection that was expected at
-// its range, P_D(r)); below zero it is discarded. With the sequential test (ExistenceRule)
+// its range, P_D(r)); below zero it is discarded. A confirmed landmark last seen more than
+// keep_confirmed_unseen_m of travel ago stops at the confirmation count: it stays mapped. With the sequential test (ExistenceRule)
 // each candidate seen adds a trial's log ratio wherever it was, each one in view and not
 // seen a miss's, and it is discarded at Wald's lower bound. With the rate, confirmed
 // landmarks in view are listed in `expected` with whether they were seen, to estimate it.
@@ -119,7 +120,9 @@ int ApplyExistence(FastSlamParticle& p, const Association& a, const ParticleUpda
       continue;
     }
     if (!in_view || seen) continue;
+    const bool kept = o.Confirmed(lm) && o.travel_m - lm.seen_travel_m > o.keep_confirmed_unseen_m;
     lm.counter -= o.estimate_detection_rate ? DetectionProbability(o.detection, z.x()) : 1.0;
+    if (kept) lm.counter = std::max(lm.counter, o.confirmed_counter);
     if (lm.counter < 0) {
       EraseLandmark(p.map, key);
       ++discarded;

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -82,6 +83,9 @@ struct ParticleUpdateOptions {
   bool estimate_detection_rate = false;
   DetectionRate detection;
   double confirmed_counter = 10.0;  ///< landmarks whose counter reached this measure the rate
+  /// [m] Counters: misses do not bring a confirmed landmark last seen more than this travel
+  /// ago below confirmed_counter (FastSlamConfig::keep_confirmed; infinity: never).
+  double keep_confirmed_unseen_m = std::numeric_limits<double>::infinity();
   /// Existence by Wald's sequential test instead of the counters: a sighting adds
   /// DetectedLogRatio, a miss in view MissedLogRatio, with P_D at the landmark's range (the
   /// estimated rate, or the stated one), P_G and the clutter mu of the pairing's own gate

@@ -187,6 +187,39 @@ TEST(FastSlamAssociation, MissesCostTheDetectionProbabilityAtTheirRange) {
   EXPECT_FALSE(s.expected[0].second);
 }
 
+// keep_confirmed_unseen_m: a confirmed landmark (counter 10 = confirmed_counter) last seen 50 m
+// of travel ago, missed in view, keeps its count and stays where the bound is 40 m; a tentative
+// one (counter 3) loses one per miss and goes at its fourth; where the bound is 60 m (seen
+// within it) the confirmed one goes at its eleventh miss.
+TEST(FastSlamAssociation, ConfirmedLandmarksUnseenForLongOutlastTheirMisses) {
+  for (const bool keep : {true, false}) {
+    ParticleUpdateOptions o = UnknownIds();
+    o.confirmed_counter = 10;
+    o.travel_m = 50.0;
+    o.keep_confirmed_unseen_m = keep ? 40.0 : 60.0;
+    FastSlamParticle p = ParticleWith({{4, 0}, {6, 0}}, 10);
+    LandmarkGaussian tentative = *FindLandmark(p.map, 0);
+    tentative.counter = 3;
+    SetLandmark(p.map, 0, tentative);
+    std::mt19937_64 rng(1);
+    int discarded = 0;
+    for (int miss = 1; miss <= 11; ++miss) {
+      discarded += UpdateParticle(p, {}, o, rng).discarded;
+      if (miss == 3) EXPECT_NE(FindLandmark(p.map, 0), nullptr);
+      if (miss == 4) EXPECT_EQ(FindLandmark(p.map, 0), nullptr);
+      if (miss == 10) ASSERT_NE(FindLandmark(p.map, 1), nullptr);
+    }
+    if (keep) {
+      EXPECT_EQ(discarded, 1);
+      ASSERT_NE(FindLandmark(p.map, 1), nullptr);
+      EXPECT_DOUBLE_EQ(FindLandmark(p.map, 1)->counter, 10.0);
+    } else {
+      EXPECT_EQ(discarded, 2);
+      EXPECT_EQ(FindLandmark(p.map, 1), nullptr);
+    }
+  }
+}
+
 // existence=sprt (ParticleUpdateOptions::existence): one scan from the origin sees the
 // landmark at (6, 0), misses the one at (4, 0) in full view and starts a new one. Each
 // trial's gate is where N(z; z_hat, L) >= p0: with zero pose covariance and landmark
