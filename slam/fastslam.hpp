@@ -15,7 +15,9 @@
 // the best particle's map. Diagnostics per landmark scan: neff (before resampling),
 // distinct_ancestors (initial particles with living descendants), resampled (0/1),
 // landmarks (best particle's map size); map_tree_nodes (distinct live tree nodes of all
-// particles, before resampling) at each particle snapshot.
+// particles, before resampling) at each particle snapshot; constellation_merges (the best
+// particle's merges) and constellation_chance (the match's union bound) at each accepted
+// revisit (slam/fastslam_constellation.cpp).
 #include <array>
 #include <deque>
 #include <random>

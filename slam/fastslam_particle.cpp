@@ -83,9 +83,10 @@ double ExistenceTrial(const PredictedMeasurement& predicted, bool detected, cons
 // Thrun 13.2 lines 25-31: a landmark in range that should have been seen but was not
 // loses one count (with an estimated detection rate: the detection that was expected at
 // its range, P_D(r)); below zero it is discarded. A confirmed landmark last seen more than
-// keep_confirmed_unseen_m of travel ago stops at the confirmation count: it stays mapped. With the sequential test (ExistenceRule)
-// each candidate seen adds a trial's log ratio wherever it was, each one in view and not
-// seen a miss's, and it is discarded at Wald's lower bound. With the rate, confirmed
+// keep_confirmed_unseen_m of travel ago stops at the confirmation count: it stays mapped.
+// With the sequential test (ExistenceRule) each candidate seen adds a trial's log ratio
+// wherever it was, each one in view and not seen a miss's, and it is discarded at Wald's
+// lower bound. With the rate, confirmed
 // landmarks in view are listed in `expected` with whether they were seen, to estimate it.
 int ApplyExistence(FastSlamParticle& p, const Association& a, const ParticleUpdateOptions& o,
                    std::vector<std::pair<double, bool>>& expected) {
