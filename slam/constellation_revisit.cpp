@@ -75,16 +75,49 @@ std::optional<Revisit> FindRevisit(std::span<const RevisitLandmark> confirmed, c
   return std::nullopt;
 }
 
+double RevisitShare(double v_rad2, double paired_rad2, double now_rad2) {
+  if (!(now_rad2 > paired_rad2)) return 0.0;
+  return std::clamp((v_rad2 - paired_rad2) / (now_rad2 - paired_rad2), 0.0, 1.0);
+}
+
+std::vector<double> RevisitShares(const Revisit& revisit, std::span<const RevisitLandmark> confirmed,
+                                  const RevisitSettings& settings) {
+  std::vector<double> shares(revisit.old.size(), 0.0);
+  std::vector<bool> paired(revisit.old.size(), false);
+  double paired_rad2 = 0.0;
+  for (const auto& [o, r] : revisit.match.pairs) {
+    paired[o] = true;
+    paired_rad2 = std::max(paired_rad2, confirmed[revisit.old[o]].seen_heading_variance_rad2);
+  }
+  for (size_t o = 0; o < revisit.old.size(); ++o)
+    if (!paired[o])
+      shares[o] =
+          RevisitShare(confirmed[revisit.old[o]].seen_heading_variance_rad2, paired_rad2, settings.heading_variance_rad2);
+  return shares;
+}
+
+SE2 PartOfMotion(const SE2& T, double share) {
+  if (share >= 1.0) return T;  // exactly, not through Log and Exp
+  if (share <= 0.0) return SE2();
+  return Exp(share * Log(T));
+}
+
 double LogMissedUnderRevisit(const Revisit& revisit, std::span<const RevisitLandmark> confirmed,
                              std::span<const Eigen::Vector2d> window_xy, std::span<const SE2> scan_poses,
-                             double tolerance_m, const std::function<double(const Eigen::Vector2d&)>& detection_in_view) {
-  const SE2 T_inverse = revisit.match.T_old_recent.inverse();
+                             double tolerance_m, std::span<const double> shares,
+                             const std::function<double(const Eigen::Vector2d&)>& detection_in_view) {
+  const SE2& T = revisit.match.T_old_recent;
+  const SE2 T_inverse = T.inverse();
   std::vector<bool> paired(revisit.old.size(), false);
   for (const auto& [o, r] : revisit.match.pairs) paired[o] = true;
   double log_missed = 0.0;
   for (size_t o = 0; o < revisit.old.size(); ++o) {
     if (paired[o]) continue;
-    const Eigen::Vector2d q = T_inverse * confirmed[revisit.old[o]].xy;  // where the window would have mapped it
+    const RevisitLandmark& old = confirmed[revisit.old[o]];
+    const double share = shares.empty() ? 0.0 : shares[o];
+    // Where the window would have mapped it: moved by its share of T into the old map's frame,
+    // then into the window's.
+    const Eigen::Vector2d q = T_inverse * (PartOfMotion(T, share) * old.xy);
     if (std::any_of(window_xy.begin(), window_xy.end(), [&](const Eigen::Vector2d& m) { return (m - q).norm() <= tolerance_m; }))
       continue;
     for (const SE2& pose : scan_poses) {

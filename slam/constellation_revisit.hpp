@@ -20,6 +20,11 @@
 // match puts in view of the window's scans should have been mapped again there: if they
 // were missed with a probability below the false-match one (the product of 1 - P_D over
 // every such scan), the match is refused (LogMissedUnderRevisit).
+//
+// The match is the drift accrued since the old landmarks were seen. What the filter mapped in
+// between carries part of it: each such landmark takes the share of the motion that dead
+// reckoning's heading variance had accrued by its last sighting (RevisitShares, PartOfMotion),
+// and the missed-landmarks rule expects it where that share leaves it.
 #include <Eigen/Core>
 #include <functional>
 #include <optional>
@@ -71,13 +76,36 @@ bool RevisitWorthSearching(std::span<const RevisitLandmark> confirmed, std::span
 /// The first window whose match passes (1) and MatchConstellation's own rules, or none.
 std::optional<Revisit> FindRevisit(std::span<const RevisitLandmark> confirmed, const RevisitSettings& settings);
 
+/// The share in [0, 1] of the revisit's motion that each of `revisit.old` takes (0 for the
+/// paired ones). The motion is the drift accrued since the paired old landmarks were seen; an
+/// old landmark mapped during that drift (seen later than they were) carries the part accrued
+/// until its own sighting. Dead reckoning's heading variance measures how far along: the
+/// share is (v - v_paired) / (v_now - v_paired), v its `seen_heading_variance_rad2`, v_paired
+/// the paired ones' largest, v_now `settings.heading_variance_rad2`; clipped to [0, 1]. This
+/// is how pose-graph relaxation spreads a loop's rotational error (in proportion to the
+/// covariance along the path): without it the map drawn during the drift stays where the
+/// drift put it and the rest of the lap follows it again.
+std::vector<double> RevisitShares(const Revisit& revisit, std::span<const RevisitLandmark> confirmed,
+                                  const RevisitSettings& settings);
+
+/// One landmark's share: (v - v_paired) / (v_now - v_paired) clipped to [0, 1] (0 if v_now <= v_paired).
+double RevisitShare(double v_rad2, double paired_rad2, double now_rad2);
+
+/// `share` of motion T along its screw (Exp(share Log T)): the identity at 0, T at 1.
+SE2 PartOfMotion(const SE2& T, double share);
+
 /// log P[the old landmarks the match puts in view were all missed]: for each old landmark the
 /// match did not pair and that no window landmark (`window_xy`: every landmark not old,
 /// tentative ones too) lies within tolerance of, sum log(1 - P_D(z)) over the window's scan
 /// poses (`scan_poses`) that would see it at z. `detection_in_view(z)` is P_D at the predicted
-/// (range, bearing) z, 0 outside the field of view.
+/// (range, bearing) z, 0 outside the field of view. An old landmark that the correction moves
+/// by its share of T (`shares`, per `revisit.old`, RevisitShares; empty: none moves) is
+/// expected where that leaves it: one mapped during the drift (after a lap the old map holds
+/// the drifted copy of the place where the lap ended) moves with the window, not with the
+/// old map.
 double LogMissedUnderRevisit(const Revisit& revisit, std::span<const RevisitLandmark> confirmed,
                              std::span<const Eigen::Vector2d> window_xy, std::span<const SE2> scan_poses,
-                             double tolerance_m, const std::function<double(const Eigen::Vector2d&)>& detection_in_view);
+                             double tolerance_m, std::span<const double> shares,
+                             const std::function<double(const Eigen::Vector2d&)>& detection_in_view);
 
 }  // namespace slambox

@@ -77,6 +77,9 @@ struct EkfSlamConfig {
   /// the robot moved with them (place recognition after drift, slam/ekf_slam_constellation.cpp)
   bool constellation_merges = true;
   int constellation_max_hypotheses = 100000;  ///< [hypotheses] constellation_merges: search budget per search (windows together)
+  /// constellation_merges: old landmarks mapped during the drift (seen after the matched old
+  /// ones) take their share of the match's motion (RevisitShares), not only the window's
+  bool constellation_spread = true;
   bool closure_test = true;             ///< unknown ids: a loop closure on uncertain evidence forks the filter, Wald's test on the scans' likelihoods keeps one branch
   bool recover_heading = true;         ///< unknown ids: re-associate a scan that contradicts the predicted heading under a wider heading prior (slam/ekf_slam_recovery.cpp)
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)

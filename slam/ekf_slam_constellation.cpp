@@ -3,9 +3,11 @@
 // within the last 2, 4 or 8 range_max of travel are matched as one rigid shape onto the
 // landmarks last seen before that (slam/constellation_match.hpp). The match is the place's
 // motion T from where the filter put it to where the old map has it: the robot and the
-// landmarks it saw within the window move by T, take on the fit's uncertainty of T, and
-// each matched pair, now close, is merged by exact conditioning (the older landmark kept);
-// through the correlations the rest of the map follows, as after a known-id re-observation.
+// landmarks it saw within the window move by T, the landmarks mapped during the drift by
+// their share of it (constellation_spread, RevisitShares), they take on the fit's uncertainty
+// of T, and each matched pair, now close, is merged by exact conditioning (the older landmark
+// kept); through the correlations the rest of the map follows, as after a known-id
+// re-observation.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -37,32 +39,38 @@ Eigen::Matrix3d FitCovarianceAtRobot(const ConstellationMatch& match, const std:
   return Q;
 }
 
-/// The robot and the landmarks `moved` flags move by T: their means, and their covariance with
-/// them (P <- A P A^T, A rotating their position rows by T's angle); then they take on Q as one
-/// rigid motion about the robot (+ J Q J^T, J the motion's Jacobian: identity for the robot,
-/// [I, perp(m - x_r)] for a landmark m). Merging the pairs without the move, linearized on a
-/// heading several degrees off, sent `forest` seed 14 10 m the wrong way; scaling the covariance
-/// by the match's NIS instead left the scripted revisit 0.3 m off
+/// The robot moves by T and each landmark l by the part of T its share s_l gives
+/// (PartOfMotion; 1 for the window's, RevisitShares for old ones mapped during the drift, 0
+/// for the rest): their means, and their covariance with them (P <- A P A^T, A rotating each
+/// moved position's rows by its own angle s_l theta); then they take on Q as one rigid motion
+/// about the robot, in proportion to their share (+ J Q J^T, J the motion's Jacobian: identity
+/// for the robot, s_l [I, perp(m - x_r)] for a landmark m). Merging the pairs without the move,
+/// linearized on a heading several degrees off, sent `forest` seed 14 10 m the wrong way;
+/// scaling the covariance by the match's NIS instead left the scripted revisit 0.3 m off
 /// (tests/slam/ekf_slam_constellation_test.cpp).
-void MoveRigidly(EkfSlamState& state, const std::vector<bool>& moved, const SE2& T, const Eigen::Matrix3d& Q) {
-  const Eigen::Matrix2d Rt = T.rotation();
-  std::vector<Eigen::Index> rows = {0};  // the robot's position, then each moved landmark's
-  for (size_t l = 0; l < moved.size(); ++l)
-    if (moved[l]) rows.push_back(3 + 2 * static_cast<Eigen::Index>(l));
+void MoveByShares(EkfSlamState& state, const std::vector<double>& shares, const SE2& T, const Eigen::Matrix3d& Q) {
+  struct Moved {
+    Eigen::Index row;  // the position's first row
+    double share;
+    SE2 motion;        // PartOfMotion(T, share)
+  };
+  std::vector<Moved> moved = {{0, 1.0, T}};  // the robot's position, then each moved landmark's
+  for (size_t l = 0; l < shares.size(); ++l)
+    if (shares[l] > 0.0) moved.push_back({3 + 2 * static_cast<Eigen::Index>(l), shares[l], PartOfMotion(T, shares[l])});
   Eigen::MatrixXd& P = state.covariance;
-  for (const Eigen::Index row : rows) P.middleRows<2>(row) = Rt * P.middleRows<2>(row);
-  for (const Eigen::Index row : rows) P.middleCols<2>(row) = P.middleCols<2>(row) * Rt.transpose();
+  for (const Moved& m : moved) P.middleRows<2>(m.row) = m.motion.rotation() * P.middleRows<2>(m.row);
+  for (const Moved& m : moved) P.middleCols<2>(m.row) = P.middleCols<2>(m.row) * m.motion.rotation().transpose();
   const SE2 robot = T * state.Pose();
   state.mean.head<3>() = robot.vector();
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(state.mean.size(), 3);
   J.topLeftCorner<3, 3>().setIdentity();
-  for (const Eigen::Index row : rows) {
-    if (row == 0) continue;
-    const Eigen::Vector2d m = T * Eigen::Vector2d(state.mean.segment<2>(row));
-    state.mean.segment<2>(row) = m;
-    J.block<2, 2>(row, 0).setIdentity();
-    J(row, 2) = -(m - robot.translation()).y();
-    J(row + 1, 2) = (m - robot.translation()).x();
+  for (const Moved& m : moved) {
+    if (m.row == 0) continue;
+    const Eigen::Vector2d xy = m.motion * Eigen::Vector2d(state.mean.segment<2>(m.row));
+    state.mean.segment<2>(m.row) = xy;
+    J.block<2, 2>(m.row, 0) = m.share * Eigen::Matrix2d::Identity();
+    J(m.row, 2) = -m.share * (xy - robot.translation()).y();
+    J(m.row + 1, 2) = m.share * (xy - robot.translation()).x();
   }
   P.noalias() += J * Q * J.transpose();
 }
@@ -98,17 +106,20 @@ int EkfSlam::MergeConstellation(double t_s) {
   std::vector<SE2> scan_poses;  // newest first
   for (auto it = scan_path_.rbegin(); it != scan_path_.rend() && travel_m_ - it->first <= revisit->window_m; ++it)
     scan_poses.push_back(it->second);
-  const double log_missed =
-      LogMissedUnderRevisit(*revisit, confirmed, window_xy, scan_poses, settings.tolerance_m, [&](const Eigen::Vector2d& z) {
-        return ExpectedInView(z) ? DetectionProbability(detection_, z.x()) : 0.0;
-      });
+  const std::vector<double> old_shares =
+      config_.constellation_spread ? RevisitShares(*revisit, confirmed, settings) : std::vector<double>();
+  const double log_missed = LogMissedUnderRevisit(
+      *revisit, confirmed, window_xy, scan_poses, settings.tolerance_m, old_shares,
+      [&](const Eigen::Vector2d& z) { return ExpectedInView(z) ? DetectionProbability(detection_, z.x()) : 0.0; });
   if (log_missed < std::log(1.0 - gate_probability_)) return 0;
   const ConstellationMatch& match = revisit->match;
   Record(t_s, "constellation_chance", match.chance);
   std::vector<Eigen::Vector2d> recent_xy;
   for (const int c : revisit->recent) recent_xy.push_back(confirmed[c].xy);
   const double sigma2 = std::max(R_(0, 0), range_max_m_ * range_max_m_ * R_(1, 1));
-  MoveRigidly(state_, moved, match.T_old_recent, FitCovarianceAtRobot(match, recent_xy, sigma2, state_.Pose()));
+  std::vector<double> shares(moved.begin(), moved.end());
+  for (size_t o = 0; o < old_shares.size(); ++o) shares[index[revisit->old[o]]] = old_shares[o];
+  MoveByShares(state_, shares, match.T_old_recent, FitCovarianceAtRobot(match, recent_xy, sigma2, state_.Pose()));
   std::vector<std::pair<int, int>> pair_keys;  // (old, recent): indices shift as landmarks are removed
   for (const auto& [o, r] : match.pairs) pair_keys.emplace_back(keys[revisit->old[o]], keys[revisit->recent[r]]);
   auto index_of = [&](int key) {

@@ -61,6 +61,10 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
          "are not searched");
   b.Bind("constellation_gate_prob", c.constellation_gate_prob, "-",
          "constellation_merges: probability of the heading and tolerance gates; 1 - it bounds a false match");
+  b.Bind("constellation_spread", c.constellation_spread, "-",
+         "constellation_merges: landmarks last seen after the matched old ones but before the window (mapped during "
+         "the drift) move by the part of the particle's motion dead reckoning's heading variance accrued until their "
+         "sighting, (v - v_matched) / (v_now - v_matched), along the motion's screw; off: only the window moves");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
   static const EnumNames<FastSlamTrajectory> kTrajectoryNames = {{FastSlamTrajectory::kBest, "best"},
                                                                   {FastSlamTrajectory::kMean, "mean"},

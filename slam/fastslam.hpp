@@ -92,6 +92,9 @@ struct FastSlamConfig {
   /// constellation_merges: the heading gate's probability (1 - it: the false-match probability);
   /// the tolerance is the 2-dof gate at it (RevisitTolerance).
   double constellation_gate_prob = 0.99;
+  /// constellation_merges: landmarks seen after the matched old ones but before the window
+  /// (mapped during the drift) take their share of the particle's motion (RevisitShare)
+  bool constellation_spread = true;
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
   FastSlamTrajectory trajectory = FastSlamTrajectory::kBest;  ///< what goes into Estimate::trajectory
 };

@@ -5,7 +5,8 @@
 // it (slam/constellation_revisit.hpp), in the best particle's map: its recent landmarks match
 // old ones as one rigid shape. Then each particle that holds at least three of the matched
 // pairs fits its own motion T to them (AlignPointToPoint), moves its pose and the landmarks
-// it saw within the window by T (their covariances rotated), and merges each pair by
+// it saw within the window by T, those it saw since the matched old ones by their share of T
+// (constellation_spread, RevisitShare; covariances rotated), and merges each pair by
 // conditioning the two landmark Gaussians on being one point (ConditionOnEqual; given the
 // path a particle's landmarks are independent, so there is no cross term). A particle that
 // holds fewer pairs (another lineage mapped the place differently) is left alone: its weight
@@ -26,11 +27,15 @@ namespace slambox {
 namespace {
 
 /// Moves the particle's pose and every landmark seen within `window_m` of travel (but the
-/// old ones of `pairs`) by T, then merges each (old, recent) pair into the old key. Returns
-/// the merges, 0 if the particle holds fewer than 3 pairs.
-int MoveAndMerge(FastSlamParticle& p, const std::vector<std::pair<int, int>>& pairs, double travel_m, double window_m) {
+/// old ones of `pairs`) by T; with `spread`, each landmark seen before the window but after the
+/// paired old ones by its share of T (RevisitShare, dead reckoning's heading variance
+/// `now_rad2` now); then merges each (old, recent) pair into the old key. Returns the merges,
+/// 0 if the particle holds fewer than 3 pairs.
+int MoveAndMerge(FastSlamParticle& p, const std::vector<std::pair<int, int>>& pairs, double travel_m, double window_m,
+                 bool spread, double now_rad2) {
   std::vector<Eigen::Vector2d> recent_xy, old_xy;
   std::vector<std::pair<int, int>> held;
+  double paired_rad2 = 0.0;  // the paired old landmarks' largest heading variance at their sighting
   for (const auto& [old_key, recent_key] : pairs) {
     const LandmarkGaussian* a = FindLandmark(p.map, old_key);
     const LandmarkGaussian* b = FindLandmark(p.map, recent_key);
@@ -38,25 +43,28 @@ int MoveAndMerge(FastSlamParticle& p, const std::vector<std::pair<int, int>>& pa
     old_xy.push_back(a->mean);
     recent_xy.push_back(b->mean);
     held.emplace_back(old_key, recent_key);
+    paired_rad2 = std::max(paired_rad2, a->seen_heading_variance_rad2);
   }
   if (held.size() < 3) return 0;
   const std::vector<double> weights(held.size(), 1.0);
   const SE2 T = AlignPointToPoint(recent_xy, old_xy, weights);
-  const Eigen::Matrix2d Rt = T.rotation();
   p.pose = T * p.pose;
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();  // the pose's Jacobian of the move (x, y rotate; theta shifts)
-  A.topLeftCorner<2, 2>() = Rt;
+  A.topLeftCorner<2, 2>() = T.rotation();
   p.pose_covariance = A * p.pose_covariance * A.transpose();
-  std::vector<int> moved;
+  std::vector<std::pair<int, double>> moved;  // (key, share of T)
   ForEachLandmark(p.map, [&](int key, const LandmarkGaussian& lm) {
-    if (travel_m - lm.seen_travel_m > window_m) return;
     if (std::any_of(held.begin(), held.end(), [&](const auto& pair) { return pair.first == key; })) return;
-    moved.push_back(key);
+    const double share = travel_m - lm.seen_travel_m <= window_m ? 1.0
+                         : spread ? RevisitShare(lm.seen_heading_variance_rad2, paired_rad2, now_rad2)
+                                  : 0.0;
+    if (share > 0.0) moved.emplace_back(key, share);
   });
-  for (const int key : moved) {
+  for (const auto& [key, share] : moved) {
+    const SE2 part = PartOfMotion(T, share);
     LandmarkGaussian lm = *FindLandmark(p.map, key);
-    lm.mean = T * lm.mean;
-    lm.covariance = Rt * lm.covariance * Rt.transpose();
+    lm.mean = part * lm.mean;
+    lm.covariance = part.rotation() * lm.covariance * part.rotation().transpose();
     SetLandmark(p.map, key, lm);
   }
   int merged = 0;
@@ -128,8 +136,11 @@ int FastSlam::MergeConstellation(double t_s) {
     if (node == nullptr) break;
     scan_poses.push_back(node->pose);
   }
+  const std::vector<double> old_shares =
+      config_.constellation_spread ? RevisitShares(*revisit, confirmed, settings) : std::vector<double>();
   const double log_missed =
-      LogMissedUnderRevisit(*revisit, confirmed, window_xy, scan_poses, settings.tolerance_m, [&](const Eigen::Vector2d& z) {
+      LogMissedUnderRevisit(*revisit, confirmed, window_xy, scan_poses, settings.tolerance_m, old_shares,
+                            [&](const Eigen::Vector2d& z) {
         const bool in_view = z.x() <= update_.range_max_m - update_.visibility_margin_m && std::abs(z.y()) <= update_.half_fov_rad;
         return in_view ? DetectionProbability(update_.detection, z.x()) : 0.0;
       });
@@ -139,7 +150,8 @@ int FastSlam::MergeConstellation(double t_s) {
   for (const auto& [o, r] : revisit->match.pairs) pairs.emplace_back(keys[revisit->old[o]], keys[revisit->recent[r]]);
   int merged_best = 0;
   for (size_t i = 0; i < particles_.size(); ++i) {
-    const int merged = MoveAndMerge(particles_[i], pairs, travel_m_, revisit->window_m);
+    const int merged = MoveAndMerge(particles_[i], pairs, travel_m_, revisit->window_m, config_.constellation_spread,
+                                    heading_variance_rad2_);
     if (static_cast<int>(i) == best) merged_best = merged;
   }
   // Every path gets the pose at t_s (moved or not), so that all paths keep the same times.

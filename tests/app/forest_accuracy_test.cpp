@@ -10,6 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
+#include <tuple>
+#include <vector>
 #include <variant>
 
 #include "app/registry.hpp"
@@ -162,8 +165,11 @@ TEST(ForestAccuracy, ClosureTestRejectsTheFalseLoopClosureOfSeed1) {
   for (const auto& e : s.events)
     if (const auto* scan = std::get_if<LandmarkEvent>(&e)) observations += scan->observations.size();
   EXPECT_EQ(ekf.observation_assignments.size(), observations);
-  // Without the test the old result comes back (the test fails there).
-  const Estimate without = Replay(*FindModule("ekf-slam").create({{"closure_test", "false"}}), s);
+  // Without the test (and without constellation_merges, which since old landmarks mapped
+  // after the matched ones no longer veto a match recognizes the revisit later: 3.70 m) the
+  // old result comes back (the test fails there).
+  const Estimate without =
+      Replay(*FindModule("ekf-slam").create({{"closure_test", "false"}, {"constellation_merges", "false"}}), s);
   EXPECT_GT(AteRmse(without, s), 5.0);
 }
 
@@ -204,14 +210,32 @@ TEST(ForestAccuracy, ConstellationMatchesCloseTheEkfsLoop) {
   }
 }
 
+TEST(ForestAccuracy, ConstellationSpreadMovesTheMapDrawnDuringTheDrift) {
+  // A revisit's motion moved only the robot and the window's landmarks: the landmarks mapped
+  // during the drift stayed where it had put them, and lap 2 followed them off again. With
+  // their share of it (constellation_spread, RevisitShares in slam/constellation_revisit.hpp)
+  // measured ekf-slam 3.20 -> 2.35 m (seed 13) and 4.42 -> 3.59 m (18), fastslam2 1.29 ->
+  // 0.98 m (9) and 1.53 -> 1.21 m (27). Bounds: 1.1x the measured ATE; off: 1.2x it or more.
+  const std::vector<std::tuple<std::string, int, double>> cases = {
+      {"ekf-slam", 13, 2.35}, {"ekf-slam", 18, 3.59}, {"fastslam2", 9, 0.98}, {"fastslam2", 27, 1.21}};
+  for (const auto& [module, seed, measured_m] : cases) {
+    const Stream s = Simulate(LoadScenario("forest"), seed);
+    const double on = AteRmse(Replay(*FindModule(module).create({}), s), s);
+    const double off = AteRmse(Replay(*FindModule(module).create({{"constellation_spread", "false"}}), s), s);
+    std::printf("%s seed %d: %.2f m, without the spread %.2f m\n", module.c_str(), seed, on, off);
+    EXPECT_LT(on, 1.1 * measured_m) << module << " " << seed;
+    EXPECT_GT(off, 1.2 * measured_m) << module << " " << seed;
+  }
+}
+
 TEST(ForestAccuracy, FastSlamKeepsItsOldMapAndRecognizesTheRevisit) {
   // fastslam2 (50 particles) mapped the park a second time on seeds 17 and 20 (2.74 and
   // 6.01 m); with the revisit search on the best particle's map (constellation_merges) and
   // old confirmed landmarks kept through their misses (keep_confirmed), measured 0.78 and
   // 0.86 m; either alone: 2.74 and 4.23 m (constellation only) (slam/README_fastslam.md,
-  // "Place recognition by constellation"). Bounds: 1.25x the measured ATE; without
-  // keep_confirmed, above 2 m.
-  for (const auto& [seed, measured_m] : {std::pair{17, 0.78}, std::pair{20, 0.86}}) {
+  // "Place recognition by constellation"); with constellation_spread 0.96 and 0.74 m.
+  // Bounds: 1.25x the measured ATE; without keep_confirmed, above 2 m.
+  for (const auto& [seed, measured_m] : {std::pair{17, 0.96}, std::pair{20, 0.74}}) {
     const Stream s = Simulate(LoadScenario("forest"), seed);
     const Estimate fs = Replay(*FindModule("fastslam2").create({}), s);
     std::printf("seed %d: fastslam2 %.2f\n", seed, AteRmse(fs, s));

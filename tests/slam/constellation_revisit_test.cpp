@@ -1,8 +1,9 @@
 // The revisit search over windows of travel (slam/constellation_revisit.hpp): which
 // landmarks are old and recent, the heading prior, the search trigger and the missed-landmark
-// refusal's closed form.
+// refusal's closed form, the shares of the motion and their screw.
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -99,13 +100,75 @@ TEST(ConstellationRevisit, AnOldLandmarkInViewAndNeverMappedCostsOneMinusPdPerSc
   const std::vector<SE2> scans(4, SE2());
   auto pd = [](const Eigen::Vector2d& z) { return z.x() < 10.0 ? 0.9 : 0.0; };
   const std::vector<Eigen::Vector2d> window = {{0, 1}, {1, 0}, {0, -1}};
-  EXPECT_NEAR(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, pd), 4.0 * std::log(0.1), 1e-12);
+  EXPECT_NEAR(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, {}, pd), 4.0 * std::log(0.1), 1e-12);
   std::vector<Eigen::Vector2d> with_it = window;
   with_it.emplace_back(5.3, 0.0);
-  EXPECT_EQ(LogMissedUnderRevisit(r, confirmed, with_it, scans, 0.5, pd), 0.0);
-  EXPECT_EQ(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, [](const Eigen::Vector2d&) { return 0.0; }), 0.0);
+  EXPECT_EQ(LogMissedUnderRevisit(r, confirmed, with_it, scans, 0.5, {}, pd), 0.0);
+  auto blind = [](const Eigen::Vector2d&) { return 0.0; };
+  EXPECT_EQ(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, {}, blind), 0.0);
+
+  // Under a match T that shifts by (20, 0), old landmark 3 is expected at T^-1 (5, 0) =
+  // (-15, 0): out of view. Mapped during the drift with share 1 it moves with the window and
+  // is expected at (5, 0) again; with share 1/2 at (-5, 0), 5 m behind, out of the 180 degree
+  // view.
+  r.match.T_old_recent = SE2(20.0, 0.0, 0.0);
+  auto pd_ahead = [](const Eigen::Vector2d& z) { return z.x() < 10.0 && std::abs(z.y()) <= M_PI / 2 ? 0.9 : 0.0; };
+  EXPECT_EQ(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, {}, pd_ahead), 0.0);
+  const std::vector<double> all = {0, 0, 0, 1}, half = {0, 0, 0, 0.5};
+  EXPECT_NEAR(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, all, pd_ahead), 4.0 * std::log(0.1), 1e-12);
+  EXPECT_EQ(LogMissedUnderRevisit(r, confirmed, window, scans, 0.5, half, pd_ahead), 0.0);
   EXPECT_NEAR(RevisitTolerance(Eigen::Vector2d(0.01, 1e-4).asDiagonal(), 20.0, 9.21),
               std::sqrt(2.0 * 9.21 * 0.04), 1e-12);
+}
+
+TEST(ConstellationRevisit, LandmarksMappedDuringTheDriftTakeTheirShareOfTheMotion) {
+  // Heading variance 0.01 rad^2 when the paired old landmarks were last seen (the largest of
+  // them), 0.05 now: a landmark seen at 0.02 takes (0.02 - 0.01) / (0.05 - 0.01) = 1/4;
+  // seen before the paired ones, none; the paired ones, none.
+  EXPECT_DOUBLE_EQ(RevisitShare(0.02, 0.01, 0.05), 0.25);
+  EXPECT_EQ(RevisitShare(0.005, 0.01, 0.05), 0.0);
+  EXPECT_EQ(RevisitShare(0.06, 0.01, 0.05), 1.0);
+  EXPECT_EQ(RevisitShare(0.02, 0.05, 0.05), 0.0);  // no drift since: nothing to share
+  std::vector<RevisitLandmark> confirmed = {{{0, 1}, 0, 1, 0.008}, {{1, 0}, 0, 2, 0.01}, {{0, -1}, 0, 2, 0.01},
+                                            {{5, 0}, 0, 40, 0.02},  {{9, 9}, 0, 0, 0.0}};
+  Revisit r;
+  r.old = {0, 1, 2, 3, 4};
+  r.match.pairs = {{0, 0}, {1, 1}, {2, 2}};
+  RevisitSettings settings = Settings();
+  settings.heading_variance_rad2 = 0.05;
+  const std::vector<double> shares = RevisitShares(r, confirmed, settings);
+  ASSERT_EQ(shares.size(), 5u);
+  EXPECT_EQ(shares[0], 0.0);
+  EXPECT_EQ(shares[1], 0.0);
+  EXPECT_EQ(shares[2], 0.0);
+  EXPECT_DOUBLE_EQ(shares[3], 0.25);
+  EXPECT_EQ(shares[4], 0.0);
+}
+
+TEST(ConstellationRevisit, PartOfAMotionFollowsItsScrew) {
+  const SE2 T(3.0, -2.0, 0.4);
+  const SE2 none = PartOfMotion(T, 0.0);
+  EXPECT_EQ(none.x, 0.0);
+  EXPECT_EQ(none.theta, 0.0);
+  const SE2 all = PartOfMotion(T, 1.0);  // exactly T
+  EXPECT_EQ(all.x, T.x);
+  EXPECT_EQ(all.y, T.y);
+  EXPECT_EQ(all.theta, T.theta);
+  // Two halves make the whole; a quarter turns by a quarter of the angle about the same fixed
+  // point (the motion's centre of rotation c = (I - R)^-1 t stays put).
+  const SE2 half = PartOfMotion(T, 0.5);
+  const SE2 twice = half * half;
+  EXPECT_NEAR(twice.x, T.x, 1e-12);
+  EXPECT_NEAR(twice.y, T.y, 1e-12);
+  EXPECT_NEAR(twice.theta, T.theta, 1e-12);
+  const Eigen::Vector2d c = (Eigen::Matrix2d::Identity() - T.rotation()).inverse() * T.translation();
+  const SE2 quarter = PartOfMotion(T, 0.25);
+  EXPECT_NEAR(quarter.theta, 0.1, 1e-12);
+  EXPECT_NEAR((quarter * c - c).norm(), 0.0, 1e-12);
+  // A pure translation is shared linearly.
+  const SE2 shift = PartOfMotion(SE2(4.0, -2.0, 0.0), 0.25);
+  EXPECT_NEAR(shift.x, 1.0, 1e-12);
+  EXPECT_NEAR(shift.y, -0.5, 1e-12);
 }
 
 }  // namespace
