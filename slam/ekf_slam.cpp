@@ -61,7 +61,8 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
          "constellation_merges: old landmarks last seen after the matched old ones (mapped during the drift) move by "
          "the part of the match's motion dead reckoning's heading variance accrued until their sighting, "
          "(v - v_matched) / (v_now - v_matched), along the motion's screw (pose-graph relaxation's spread of a loop's "
-         "error); off: only the robot and the window's landmarks move");
+         "error); off (the default; slam/README_landmark_slam.md: worse on held-out parks): only the robot and the "
+         "window's landmarks move");
   b.Bind("hold_uncertain_pairings", c.hold_uncertain_pairings, "-",
          "unknown ids: hold a pairing whose gate (given the scan's other pairings) expects more clutter than the gate's "
          "miss probability, until held pairings in consecutive scans (hold_evidence) make a fake unlikelier than that");
