@@ -2,7 +2,8 @@
 // The scripted revisit of the constellation tests (ekf_slam_constellation_test.cpp,
 // fastslam_constellation_test.cpp): twelve trees mapped at the start, a 60 m drive without
 // scans (30 m out and back, as the odometry says), then the same trees seen from
-// `true_return` instead of the start. Noise-free detections, small odometry alpha.
+// `true_return` instead of the start; and a longer drive with a drift that trees mapped on
+// the way carry (DriftStream). Noise-free detections, small odometry alpha.
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -59,10 +60,10 @@ inline const std::vector<Eigen::Vector2d> kFarTrees = {{47, 3}, {52, -4}, {55, 2
 
 /// A drift the filter maps through: `scans` scans of kTrees at the start, 60 m out, a turn
 /// that truly turns `turn_error.theta` more than the odometry says and slips by
-/// (`turn_error.x`, `turn_error.y`), 10 m back, `scans` scans of
-/// kFarTrees (mapped with the turn's heading error), 50 m back, then `scans` + 1 scans of
-/// kTrees from where the robot truly is (`*true_return`). The far trees are old at the return (seen 50 m before,
-/// beyond the 40 m window) and carry the same drift as the window.
+/// (`turn_error.x`, `turn_error.y`), 10 m back, `scans` scans of kFarTrees (mapped with the
+/// turn's error), 50 m back, then `scans` + 1 scans of kTrees from where the robot truly is
+/// (`*true_return`). The far trees are old at the return (seen 50 m before, beyond the 40 m
+/// window) and carry the same drift as the window.
 inline Stream DriftStream(const SE2& turn_error, int scans, SE2* true_return) {
   Stream s = EmptyStream();
   double t = 0.0;
