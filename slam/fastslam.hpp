@@ -6,18 +6,21 @@
 //
 // Output: Estimate::trajectory is the path of the particle with the largest weight at the
 // end (its ancestry's poses at every odometry event; ties on the weight are broken by
-// the lineage's total likelihood), with, at each time, the covariance of the weighted
+// the lineage's total likelihood), moved as its lineage's map moved at each loop closure
+// and revisit (RelaxedPath, slam/fastslam_closure.hpp: the particle's path is smoothed
+// as a pose graph would be, within dead reckoning's drift model), with, at each time, the covariance of the weighted
 // particle cloud (plus the mean of the 2.0 proposal priors) around the weighted mean,
 // for NEES, only after the time where all final particles' paths coalesce (before it the
 // set holds one path and no covariance is reported; diagnostic coalesced_until_s).
 // `trajectory = mean` outputs the filtered weighted mean pose instead,
-// `path_mean` the weighted mean of the final particles' ancestral paths. Landmarks are
+// `path_mean` the weighted mean of the final particles' ancestral paths (neither relaxed). Landmarks are
 // the best particle's map. Diagnostics per landmark scan: neff (before resampling),
 // distinct_ancestors (initial particles with living descendants), resampled (0/1),
 // landmarks (best particle's map size); map_tree_nodes (distinct live tree nodes of all
 // particles, before resampling) at each particle snapshot; constellation_merges (the best
 // particle's merges) and constellation_chance (the match's union bound) at each accepted
-// revisit (slam/fastslam_constellation.cpp).
+// revisit (slam/fastslam_constellation.cpp); closure_particles (particles corrected) at each
+// scan with a loop closure by re-observation (known ids, slam/fastslam_closure.hpp).
 #include <array>
 #include <deque>
 #include <random>
@@ -92,9 +95,14 @@ struct FastSlamConfig {
   /// constellation_merges: the heading gate's probability (1 - it: the false-match probability);
   /// the tolerance is the 2-dof gate at it (RevisitTolerance).
   double constellation_gate_prob = 0.99;
-  /// constellation_merges: landmarks seen after the matched old ones but before the window
-  /// (mapped during the drift) take their share of the particle's motion (RevisitShare)
+  /// constellation_merges: the particle's path since the matched old ones relaxes under its
+  /// motion, and the landmarks seen since move with it (RelaxParticle, slam/fastslam_closure.hpp)
   bool constellation_spread = true;
+  /// Loop closure by re-observation (slam/fastslam_closure.hpp; known ids): a particle whose landmarks
+  /// last seen beyond the revisit search's widest window come back with an innovation its pose
+  /// prior cannot explain (chi-square at constellation_gate_prob) moves its pose by the drift
+  /// that explains them, and the map it drew since them by its share (RevisitShare).
+  bool closure_spread = true;
   double snapshot_period_s = 10.0;   ///< [s] particle snapshots for figures (0 = none)
   FastSlamTrajectory trajectory = FastSlamTrajectory::kBest;  ///< what goes into Estimate::trajectory
 };
@@ -149,6 +157,7 @@ class FastSlam : public SlamModule {
   double births_ = 0.0;            ///< landmarks created so far, mean over the particles
   double travel_m_ = 0.0;               ///< [m] the odometry's travel so far (constellation_merges)
   double heading_variance_rad2_ = 0.0;  ///< [rad^2] the motion model's heading variance summed over every step so far
+  std::vector<DriftSample> drift_;      ///< the variances summed by each odometry time (path relaxation)
   std::deque<std::pair<double, double>> scan_travel_;  ///< per landmark scan of the widest window: travel [m], time [s]
   std::vector<int> constellation_searched_;  ///< keys of the recent landmarks of the last constellation search
   Estimate estimate_;

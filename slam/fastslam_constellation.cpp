@@ -18,6 +18,7 @@
 #include "core/chi_square.hpp"
 #include "slam/constellation_revisit.hpp"
 #include "slam/fastslam.hpp"
+#include "slam/fastslam_closure.hpp"
 #include "slam/icp_closed_form.hpp"
 #include "slam/landmark_merge.hpp"
 #include "slam/range_bearing.hpp"
@@ -26,13 +27,13 @@ namespace slambox {
 
 namespace {
 
-/// Moves the particle's pose and every landmark seen within `window_m` of travel (but the
-/// old ones of `pairs`) by T; with `spread`, each landmark seen before the window but after the
-/// paired old ones by its share of T (RevisitShare, dead reckoning's heading variance
-/// `now_rad2` now); then merges each (old, recent) pair into the old key. Returns the merges,
+/// Moves the particle's pose by T, and every landmark seen within `window_m` of travel (but the
+/// old ones of `pairs`) by T; with `spread`, every landmark seen after the paired old ones as
+/// the particle's path relaxes under T (RelaxParticle, dead reckoning's variances `drift`);
+/// then merges each (old, recent) pair into the old key. Returns the merges,
 /// 0 if the particle holds fewer than 3 pairs.
 int MoveAndMerge(FastSlamParticle& p, const std::vector<std::pair<int, int>>& pairs, double travel_m, double window_m,
-                 bool spread, double now_rad2) {
+                 bool spread, std::span<const DriftSample> drift) {
   std::vector<Eigen::Vector2d> recent_xy, old_xy;
   std::vector<std::pair<int, int>> held;
   double paired_rad2 = 0.0;  // the paired old landmarks' largest heading variance at their sighting
@@ -48,24 +49,17 @@ int MoveAndMerge(FastSlamParticle& p, const std::vector<std::pair<int, int>>& pa
   if (held.size() < 3) return 0;
   const std::vector<double> weights(held.size(), 1.0);
   const SE2 T = AlignPointToPoint(recent_xy, old_xy, weights);
-  p.pose = T * p.pose;
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();  // the pose's Jacobian of the move (x, y rotate; theta shifts)
-  A.topLeftCorner<2, 2>() = T.rotation();
-  p.pose_covariance = A * p.pose_covariance * A.transpose();
-  std::vector<std::pair<int, double>> moved;  // (key, share of T)
-  ForEachLandmark(p.map, [&](int key, const LandmarkGaussian& lm) {
-    if (std::any_of(held.begin(), held.end(), [&](const auto& pair) { return pair.first == key; })) return;
-    const double share = travel_m - lm.seen_travel_m <= window_m ? 1.0
-                         : spread ? RevisitShare(lm.seen_heading_variance_rad2, paired_rad2, now_rad2)
-                                  : 0.0;
-    if (share > 0.0) moved.emplace_back(key, share);
-  });
-  for (const auto& [key, share] : moved) {
-    const SE2 part = PartOfMotion(T, share);
-    LandmarkGaussian lm = *FindLandmark(p.map, key);
-    lm.mean = part * lm.mean;
-    lm.covariance = part.rotation() * lm.covariance * part.rotation().transpose();
-    SetLandmark(p.map, key, lm);
+  const auto is_held = [&](int key) {
+    return std::any_of(held.begin(), held.end(), [&](const auto& pair) { return pair.first == key; });
+  };
+  // With `spread` the particle's path since the paired old landmarks relaxes (slam/fastslam_closure.hpp);
+  // without (or without drift to spread it by) the window moves with the robot.
+  const std::vector<DriftStep> steps = spread ? PathSince(p.path.get(), paired_rad2, drift) : std::vector<DriftStep>();
+  if (!spread || !RelaxParticle(p, T * p.pose, steps, p.pose_covariance + PathDriftCovariance(steps, p.pose.translation()),
+                                paired_rad2, is_held)) {
+    MoveParticle(p, T, [&](int key, const LandmarkGaussian& lm) {
+      return !is_held(key) && travel_m - lm.seen_travel_m <= window_m ? 1.0 : 0.0;
+    });
   }
   int merged = 0;
   for (const auto& [old_key, recent_key] : held) {
@@ -150,8 +144,7 @@ int FastSlam::MergeConstellation(double t_s) {
   for (const auto& [o, r] : revisit->match.pairs) pairs.emplace_back(keys[revisit->old[o]], keys[revisit->recent[r]]);
   int merged_best = 0;
   for (size_t i = 0; i < particles_.size(); ++i) {
-    const int merged = MoveAndMerge(particles_[i], pairs, travel_m_, revisit->window_m, config_.constellation_spread,
-                                    heading_variance_rad2_);
+    const int merged = MoveAndMerge(particles_[i], pairs, travel_m_, revisit->window_m, config_.constellation_spread, drift_);
     if (static_cast<int>(i) == best) merged_best = merged;
   }
   // Every path gets the pose at t_s (moved or not), so that all paths keep the same times.

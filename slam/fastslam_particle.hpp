@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "core/stream.hpp"
@@ -43,6 +44,16 @@ struct KeyMerge {
   std::shared_ptr<const KeyMerge> parent;
 };
 
+/// A relaxation of the lineage's path (slam/fastslam_closure.hpp), newest first and shared
+/// after resampling like the path: the path up to `t_s` since the heading variance was
+/// `since_rad2` moves by the step errors that `lambda` (C^-1 dx) gives about `robot_xy`.
+struct PathRelaxation {
+  double t_s = 0, since_rad2 = 0;
+  Eigen::Vector3d lambda = Eigen::Vector3d::Zero();
+  Eigen::Vector2d robot_xy = Eigen::Vector2d::Zero();
+  std::shared_ptr<const PathRelaxation> parent;
+};
+
 struct FastSlamParticle {
   SE2 pose;  ///< T_world_robot: a sample (1.0), or the motion-predicted mean since the last sample (2.0)
   /// FastSLAM 2.0: motion noise accumulated since the pose was last sampled (the prior of
@@ -56,6 +67,11 @@ struct FastSlamParticle {
   PathPtr path;
   std::shared_ptr<AssignmentNode> assignments;  ///< what this lineage did with each detection
   std::shared_ptr<const KeyMerge> merges;       ///< the landmarks this lineage merged
+  std::shared_ptr<const PathRelaxation> relaxations;  ///< how this lineage's map moved since (its path follows at output)
+  /// [m] the travel at which it last re-observed a landmark last seen a window before
+  /// (slam/fastslam_closure.hpp: a closure ends a stretch of travel without such sightings)
+  double old_seen_travel_m = 0.0;
+  double closure_travel_m = -1.0;  ///< [m] the travel at which the last such stretch ended (-1: never)
 };
 
 struct ParticleUpdateOptions {
@@ -96,6 +112,13 @@ struct ParticleUpdateOptions {
   /// and dead reckoning's heading variance summed so far.
   double travel_m = 0.0;
   double heading_variance_rad2 = 0.0;
+  /// Loop closure by re-observation (FastSlamConfig::closure_spread; slam/fastslam_closure.hpp):
+  /// landmarks last seen more than `closure_old_after_m` of travel ago whose joint innovation
+  /// fails the chi-square gate of `closure_gate_prob` move the pose, and the map drawn since
+  /// them takes its share (off: closure_old_after_m infinite).
+  double closure_old_after_m = std::numeric_limits<double>::infinity();
+  double closure_gate_prob = 0.99;
+  std::span<const DriftSample> drift;  ///< at every odometry time so far, oldest first
   WaldThresholds wald;
   double new_log_ratio = 0.0;           ///< log prior odds of a new landmark (NewLandmarkPriorLogRatio)
   double clutter_density_per_m2 = 0.0;  ///< [1/m^2] clutter_per_scan over the footprint
@@ -113,6 +136,7 @@ struct ParticleUpdateSummary {
   int matched = 0;
   int created = 0;
   int discarded = 0;  ///< removed by the existence counters
+  bool closure = false;  ///< the particle was corrected for a loop closure (slam/fastslam_closure.hpp)
   std::vector<int> landmark_of;  ///< per observation: the key it updated or created, or -1 (ignored)
   std::vector<char> creates;     ///< per observation: it created that landmark
   /// With estimate_detection_rate: confirmed landmarks (counter >= confirmed_counter)

@@ -35,6 +35,14 @@ inline PathPtr ExtendPath(const PathPtr& path, double t_s, const SE2& pose) {
   return std::make_shared<PathNode>(t_s, pose, path);
 }
 
+/// Dead reckoning's variance accrued by an odometry time: the same for every particle's path
+/// (slam/fastslam_closure.hpp relaxes a path by it).
+struct DriftSample {
+  double t_s = 0;
+  double heading_rad2 = 0;    ///< [rad^2] heading variance summed over every step until t_s
+  double translation_m2 = 0;  ///< [m^2] translation variance summed over every step until t_s
+};
+
 /// The poses oldest first.
 inline std::vector<const PathNode*> PathPoses(const PathPtr& path) {
   std::vector<const PathNode*> nodes;
