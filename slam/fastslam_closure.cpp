@@ -163,10 +163,13 @@ std::vector<DriftStep> PathSince(const PathNode* newest, double since_rad2, std:
 }
 
 bool RelaxParticle(FastSlamParticle& p, const SE2& corrected, std::span<const DriftStep> steps, const Eigen::Matrix3d& C,
-                   double since_rad2, const std::function<bool(int)>& stays) {
+                   double gate_chi2, double since_rad2, const std::function<bool(int)>& stays) {
   if (!PositiveDefinite(C)) return false;
   const Eigen::Vector3d dx(corrected.x - p.pose.x, corrected.y - p.pose.y, NormalizeAngle(corrected.theta - p.pose.theta));
   const Eigen::Vector3d lambda = C.ldlt().solve(dx);
+  // A correction the drift model makes unlikely would be spread as large turns of opposite
+  // signs along the path that cancel at the robot: a false match, or drift of another kind.
+  if (dx.dot(lambda) > gate_chi2) return false;
   const PathCorrection path = RelaxPath(steps, p.pose.translation(), lambda);
   const double t_s = p.path ? p.path->t_s : 0.0;
   p.relaxations = std::make_shared<const PathRelaxation>(
@@ -241,7 +244,9 @@ std::optional<SE2> CorrectClosure(FastSlamParticle& p, std::span<const std::pair
   // ... and only where the drift explains them (else the association, not the pose, is wrong).
   if (JointInnovation({corrected, Eigen::Matrix3d::Zero()}, old, s.R) > gate) return std::nullopt;
   const SE2 T = corrected * p.pose.inverse();
-  if (!RelaxParticle(p, corrected, steps, C, paired_rad2, [](int) { return false; })) return std::nullopt;
+  if (!RelaxParticle(p, corrected, steps, C, ChiSquareQuantile(s.gate_probability, 3.0), paired_rad2,
+                     [](int) { return false; }))
+    return std::nullopt;
   return T;
 }
 

@@ -85,9 +85,10 @@ std::vector<DriftStep> PathSince(const PathNode* newest, double since_rad2, std:
 /// Moves `p` to `corrected` (covariance turned with it) and each landmark last seen after
 /// `since_rad2` (but those `stays` names) as its path did (RelaxPath of `steps` under the
 /// robot's prior C). The closure's correction and the constellation's spread; recorded in
-/// `p.relaxations` for the path. False (nothing moves) if C is not positive definite.
+/// `p.relaxations` for the path. False (nothing moves) if C is not positive definite or the
+/// correction dx is beyond the drift's gate, dx^T C^-1 dx > gate_chi2.
 bool RelaxParticle(FastSlamParticle& p, const SE2& corrected, std::span<const DriftStep> steps, const Eigen::Matrix3d& C,
-                   double since_rad2, const std::function<bool(int)>& stays);
+                   double gate_chi2, double since_rad2, const std::function<bool(int)>& stays);
 
 /// Moves the particle's pose by T (covariance rotated) and each landmark by PartOfMotion(T,
 /// share(key, landmark)) (covariance rotated; share 0: stays).

@@ -29,11 +29,12 @@ namespace {
 
 /// Moves the particle's pose by T, and every landmark seen within `window_m` of travel (but the
 /// old ones of `pairs`) by T; with `spread`, every landmark seen after the paired old ones as
-/// the particle's path relaxes under T (RelaxParticle, dead reckoning's variances `drift`);
+/// the particle's path relaxes under T (RelaxParticle, dead reckoning's variances `drift`,
+/// within the drift's gate `gate_chi2`);
 /// then merges each (old, recent) pair into the old key. Returns the merges,
 /// 0 if the particle holds fewer than 3 pairs.
 int MoveAndMerge(FastSlamParticle& p, const std::vector<std::pair<int, int>>& pairs, double travel_m, double window_m,
-                 bool spread, std::span<const DriftSample> drift) {
+                 bool spread, std::span<const DriftSample> drift, double gate_chi2) {
   std::vector<Eigen::Vector2d> recent_xy, old_xy;
   std::vector<std::pair<int, int>> held;
   double paired_rad2 = 0.0;  // the paired old landmarks' largest heading variance at their sighting
@@ -56,7 +57,7 @@ int MoveAndMerge(FastSlamParticle& p, const std::vector<std::pair<int, int>>& pa
   // without (or without drift to spread it by) the window moves with the robot.
   const std::vector<DriftStep> steps = spread ? PathSince(p.path.get(), paired_rad2, drift) : std::vector<DriftStep>();
   if (!spread || !RelaxParticle(p, T * p.pose, steps, p.pose_covariance + PathDriftCovariance(steps, p.pose.translation()),
-                                paired_rad2, is_held)) {
+                                gate_chi2, paired_rad2, is_held)) {
     MoveParticle(p, T, [&](int key, const LandmarkGaussian& lm) {
       return !is_held(key) && travel_m - lm.seen_travel_m <= window_m ? 1.0 : 0.0;
     });
@@ -144,7 +145,8 @@ int FastSlam::MergeConstellation(double t_s) {
   for (const auto& [o, r] : revisit->match.pairs) pairs.emplace_back(keys[revisit->old[o]], keys[revisit->recent[r]]);
   int merged_best = 0;
   for (size_t i = 0; i < particles_.size(); ++i) {
-    const int merged = MoveAndMerge(particles_[i], pairs, travel_m_, revisit->window_m, config_.constellation_spread, drift_);
+    const int merged = MoveAndMerge(particles_[i], pairs, travel_m_, revisit->window_m, config_.constellation_spread, drift_,
+                                    ChiSquareQuantile(config_.constellation_gate_prob, 3.0));
     if (static_cast<int>(i) == best) merged_best = merged;
   }
   // Every path gets the pose at t_s (moved or not), so that all paths keep the same times.
