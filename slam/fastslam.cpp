@@ -68,8 +68,8 @@ void BindParams(FastSlamConfig& c, ParamBinder& b) {
          "(slam/fastslam_closure.hpp); the output path follows; off: only the window moves");
   b.Bind("closure_spread", c.closure_spread, "-",
          "known ids: a particle that re-observes landmarks last seen beyond the revisit search's widest window with an "
-         "innovation its pose prior cannot explain moves by the drift that explains them, and the map drawn since "
-         "them by its share (slam/fastslam_closure.hpp)");
+         "innovation its pose prior cannot explain moves to the pose that explains them under dead reckoning's "
+         "drift; its path since them relaxes and the landmarks seen since follow (slam/fastslam_closure.hpp)");
   b.Bind("snapshot_period_s", c.snapshot_period_s, "s", "particle snapshots for figures (0 = none)");
   static const EnumNames<FastSlamTrajectory> kTrajectoryNames = {{FastSlamTrajectory::kBest, "best"},
                                                                   {FastSlamTrajectory::kMean, "mean"},

@@ -231,20 +231,27 @@ std::optional<SE2> CorrectClosure(FastSlamParticle& p, std::span<const std::pair
   // `closing_m` of travel (one landmark fixes two of the drift's three dof; the place's other
   // landmarks come into view): afterwards the path re-observes the closed loop's map, which
   // the correction has already moved.
-  if (s.travel_m - p.old_seen_travel_m > s.old_after_m) p.closure_travel_m = s.travel_m;
+  if (s.travel_m - p.old_seen_travel_m > s.old_after_m) {
+    p.closure_travel_m = s.travel_m;
+    p.closure_since_rad2 = p.old_seen_heading_rad2;
+  }
   p.old_seen_travel_m = s.travel_m;
+  p.old_seen_heading_rad2 = s.heading_variance_rad2;
   if (p.closure_travel_m < 0.0 || s.travel_m - p.closure_travel_m > s.closing_m) return std::nullopt;
+  // The drift to spread is the stretch's: before it the path re-observed the old map (a loop
+  // closed in between), or it is where the old landmarks were seen, whichever is later.
+  const double since_rad2 = std::max(paired_rad2, p.closure_since_rad2);
   const double gate = ChiSquareQuantile(s.gate_probability, 2.0 * static_cast<double>(old.size()));
   // A closure only where the particle's own prior cannot explain the old landmarks.
   if (JointInnovation({p.pose, p.pose_covariance}, old, s.R) <= gate) return std::nullopt;
-  const std::vector<DriftStep> steps = PathSince(p.path.get(), paired_rad2, s.drift);
+  const std::vector<DriftStep> steps = PathSince(p.path.get(), since_rad2, s.drift);
   const Eigen::Matrix3d C = p.pose_covariance + PathDriftCovariance(steps, p.pose.translation());
   if (!PositiveDefinite(C)) return std::nullopt;  // no drift since (dead reckoning without noise)
   const SE2 corrected = ClosurePose({p.pose, C}, old, s.R);
   // ... and only where the drift explains them (else the association, not the pose, is wrong).
   if (JointInnovation({corrected, Eigen::Matrix3d::Zero()}, old, s.R) > gate) return std::nullopt;
   const SE2 T = corrected * p.pose.inverse();
-  if (!RelaxParticle(p, corrected, steps, C, ChiSquareQuantile(s.gate_probability, 3.0), paired_rad2,
+  if (!RelaxParticle(p, corrected, steps, C, ChiSquareQuantile(s.gate_probability, 3.0), since_rad2,
                      [](int) { return false; }))
     return std::nullopt;
   return T;

@@ -68,10 +68,13 @@ struct FastSlamParticle {
   std::shared_ptr<AssignmentNode> assignments;  ///< what this lineage did with each detection
   std::shared_ptr<const KeyMerge> merges;       ///< the landmarks this lineage merged
   std::shared_ptr<const PathRelaxation> relaxations;  ///< how this lineage's map moved since (its path follows at output)
-  /// [m] the travel at which it last re-observed a landmark last seen a window before
-  /// (slam/fastslam_closure.hpp: a closure ends a stretch of travel without such sightings)
-  double old_seen_travel_m = 0.0;
+  /// [m] the travel at which it last re-observed a landmark last seen a window before, and
+  /// dead reckoning's summed heading variance [rad^2] then (slam/fastslam_closure.hpp: a
+  /// closure ends a stretch of travel without such sightings; its path is tied to the old map
+  /// where the stretch began)
+  double old_seen_travel_m = 0.0, old_seen_heading_rad2 = 0.0;
   double closure_travel_m = -1.0;  ///< [m] the travel at which the last such stretch ended (-1: never)
+  double closure_since_rad2 = 0.0; ///< [rad^2] the heading variance where that stretch began
 };
 
 struct ParticleUpdateOptions {

@@ -138,6 +138,27 @@ TEST(FastSlamClosure, ADriftedReturnMovesThePoseAndTheLapsMap) {
   EXPECT_LT((path[50].pose.translation() - truth_half.translation()).norm(), 0.1 * before);
 }
 
+TEST(FastSlamClosure, ACorrectionTheDriftMakesUnlikelyIsNotSpread) {
+  // The lap's steps under its own drift prior C: a 10 m shift without a turn is dx^T C^-1 dx
+  // far beyond the 3-dof gate (it would be spread as turns of opposite signs along the path).
+  Lap lap = MakeLap();
+  const std::vector<DriftStep> steps = PathSince(lap.particle.path.get(), 2e-4, lap.drift);
+  ASSERT_EQ(steps.size(), 100u);  // the steps since the old sightings, the first one's end at 2e-4
+  const Eigen::Matrix3d C = PathDriftCovariance(steps, lap.particle.pose.translation());
+  const SE2 before = lap.particle.pose;
+  const SE2 shifted = SE2(10.0, 0.0, 0.0) * before;
+  const Eigen::Vector3d dx(10.0, 0.0, 0.0);
+  ASSERT_GT(dx.dot(C.ldlt().solve(dx)), 11.35);  // chi2_3(0.99)
+  EXPECT_FALSE(RelaxParticle(lap.particle, shifted, steps, C, 11.35, 2e-4, [](int) { return false; }));
+  EXPECT_EQ(lap.particle.pose.translation(), before.translation());
+  EXPECT_EQ(lap.particle.relaxations, nullptr);
+  // A small one within the gate is spread, and recorded for the path.
+  const SE2 nudged = SE2(0.1, 0.0, 0.0) * before;
+  EXPECT_TRUE(RelaxParticle(lap.particle, nudged, steps, C, 11.35, 2e-4, [](int) { return false; }));
+  EXPECT_EQ(lap.particle.pose.translation(), nudged.translation());
+  EXPECT_NE(lap.particle.relaxations, nullptr);
+}
+
 TEST(FastSlamClosure, NoClosureWhereThePriorExplainsTheReturnOrNoStretchWithoutOldLandmarksPreceded) {
   Lap lap = MakeLap();
   lap.particle.pose = SE2();  // at the truth: the innovation passes the gate
