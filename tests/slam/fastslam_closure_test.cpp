@@ -138,6 +138,24 @@ TEST(FastSlamClosure, ADriftedReturnMovesThePoseAndTheLapsMap) {
   EXPECT_LT((path[50].pose.translation() - truth_half.translation()).norm(), 0.1 * before);
 }
 
+TEST(FastSlamClosure, OnlyTheStretchSinceThePathLastSawItsOldMapRelaxes) {
+  // The particle re-observed old landmarks halfway (heading variance 5e-3, travel 20 m, more
+  // than the window before now): the loop closed then, so the half before stays.
+  Lap lap = MakeLap();
+  lap.particle.old_seen_travel_m = 20.0;
+  lap.particle.old_seen_heading_rad2 = 5e-3;
+  LandmarkGaussian early = *FindLandmark(lap.particle.map, 3);
+  early.seen_heading_variance_rad2 = 3e-3;  // seen before the anchor
+  SetLandmark(lap.particle.map, 4, early);
+  ASSERT_TRUE(CorrectClosure(lap.particle, lap.observed, lap.settings).has_value());
+  EXPECT_EQ(lap.particle.closure_since_rad2, 5e-3);
+  EXPECT_EQ(FindLandmark(lap.particle.map, 4)->mean, early.mean);
+  const std::vector<PoseEstimate> path = RelaxedPath(lap.particle.path, lap.particle.relaxations.get(), lap.drift);
+  const std::vector<const PathNode*> raw = PathPoses(lap.particle.path);
+  EXPECT_EQ(path[30].pose.translation(), raw[30]->pose.translation());  // before the anchor
+  EXPECT_GT((path[80].pose.translation() - raw[80]->pose.translation()).norm(), 0.5);
+}
+
 TEST(FastSlamClosure, ACorrectionTheDriftMakesUnlikelyIsNotSpread) {
   // The lap's steps under its own drift prior C: a 10 m shift without a turn is dx^T C^-1 dx
   // far beyond the 3-dof gate (it would be spread as turns of opposite signs along the path).
