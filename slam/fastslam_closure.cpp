@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "core/chi_square.hpp"
-#include "slam/constellation_revisit.hpp"
 #include "slam/landmark_ekf.hpp"
 #include "slam/particle_path.hpp"
 #include "slam/range_bearing.hpp"
@@ -128,21 +127,18 @@ SE2 ClosurePose(const PoseProposal& prior, std::span<const std::pair<const Landm
   return SE2::FromVector(prior.mean.vector() + delta);
 }
 
-void MoveParticle(FastSlamParticle& p, const SE2& T, const std::function<double(int, const LandmarkGaussian&)>& share) {
+void MoveParticle(FastSlamParticle& p, const SE2& T, const std::function<bool(int, const LandmarkGaussian&)>& moves) {
   p.pose = T * p.pose;
   TurnPoseCovariance(p.pose_covariance, T.theta);
-  std::vector<std::pair<int, double>> moved;  // (key, share of T)
+  std::vector<std::pair<int, LandmarkGaussian>> moved;
   ForEachLandmark(p.map, [&](int key, const LandmarkGaussian& lm) {
-    const double part = share(key, lm);
-    if (part > 0.0) moved.emplace_back(key, part);
+    if (!moves(key, lm)) return;
+    LandmarkGaussian m = lm;
+    m.mean = T * lm.mean;
+    m.covariance = T.rotation() * lm.covariance * T.rotation().transpose();
+    moved.emplace_back(key, m);
   });
-  for (const auto& [key, part] : moved) {
-    const SE2 motion = PartOfMotion(T, part);
-    LandmarkGaussian lm = *FindLandmark(p.map, key);
-    lm.mean = motion * lm.mean;
-    lm.covariance = motion.rotation() * lm.covariance * motion.rotation().transpose();
-    SetLandmark(p.map, key, lm);
-  }
+  for (const auto& [key, lm] : moved) SetLandmark(p.map, key, lm);
 }
 
 std::vector<DriftStep> PathSince(const PathNode* newest, double since_rad2, std::span<const DriftSample> drift) {
@@ -216,32 +212,32 @@ std::vector<PoseEstimate> RelaxedPath(const PathPtr& path, const PathRelaxation*
   return out;
 }
 
-std::optional<SE2> CorrectClosure(FastSlamParticle& p, std::span<const std::pair<int, Eigen::Vector2d>> observed,
-                                  const ClosureSettings& s) {
+std::optional<SE2> CorrectClosure(FastSlamParticle& p, std::span<const int> keys, std::span<const Eigen::Vector2d> z,
+                                  const ParticleUpdateOptions& s) {
   std::vector<std::pair<const LandmarkGaussian*, Eigen::Vector2d>> old;
   double paired_rad2 = 0.0;  // the latest of the old sightings
-  for (const auto& [key, z] : observed) {
-    const LandmarkGaussian* lm = FindLandmark(p.map, key);
-    if (lm == nullptr || s.travel_m - lm->seen_travel_m <= s.old_after_m) continue;
-    old.emplace_back(lm, z);
+  for (size_t j = 0; j < keys.size(); ++j) {
+    const LandmarkGaussian* lm = keys[j] >= 0 ? FindLandmark(p.map, keys[j]) : nullptr;
+    if (lm == nullptr || s.travel_m - lm->seen_travel_m <= s.closure_old_after_m) continue;
+    old.emplace_back(lm, z[j]);
     paired_rad2 = std::max(paired_rad2, lm->seen_heading_variance_rad2);
   }
   if (old.empty()) return std::nullopt;
   // A loop closes when old landmarks return after a stretch without any, over the next
-  // `closing_m` of travel (one landmark fixes two of the drift's three dof; the place's other
+  // range_max of travel (one landmark fixes two of the drift's three dof; the place's other
   // landmarks come into view): afterwards the path re-observes the closed loop's map, which
   // the correction has already moved.
-  if (s.travel_m - p.old_seen_travel_m > s.old_after_m) {
+  if (s.travel_m - p.old_seen_travel_m > s.closure_old_after_m) {
     p.closure_travel_m = s.travel_m;
     p.closure_since_rad2 = p.old_seen_heading_rad2;
   }
   p.old_seen_travel_m = s.travel_m;
   p.old_seen_heading_rad2 = s.heading_variance_rad2;
-  if (p.closure_travel_m < 0.0 || s.travel_m - p.closure_travel_m > s.closing_m) return std::nullopt;
+  if (p.closure_travel_m < 0.0 || s.travel_m - p.closure_travel_m > s.range_max_m) return std::nullopt;
   // The drift to spread is the stretch's: before it the path re-observed the old map (a loop
   // closed in between), or it is where the old landmarks were seen, whichever is later.
   const double since_rad2 = std::max(paired_rad2, p.closure_since_rad2);
-  const double gate = ChiSquareQuantile(s.gate_probability, 2.0 * static_cast<double>(old.size()));
+  const double gate = ChiSquareQuantile(s.closure_gate_prob, 2.0 * static_cast<double>(old.size()));
   // A closure only where the particle's own prior cannot explain the old landmarks.
   if (JointInnovation({p.pose, p.pose_covariance}, old, s.R) <= gate) return std::nullopt;
   const std::vector<DriftStep> steps = PathSince(p.path.get(), since_rad2, s.drift);
@@ -251,7 +247,7 @@ std::optional<SE2> CorrectClosure(FastSlamParticle& p, std::span<const std::pair
   // ... and only where the drift explains them (else the association, not the pose, is wrong).
   if (JointInnovation({corrected, Eigen::Matrix3d::Zero()}, old, s.R) > gate) return std::nullopt;
   const SE2 T = corrected * p.pose.inverse();
-  if (!RelaxParticle(p, corrected, steps, C, ChiSquareQuantile(s.gate_probability, 3.0), since_rad2,
+  if (!RelaxParticle(p, corrected, steps, C, ChiSquareQuantile(s.closure_gate_prob, 3.0), since_rad2,
                      [](int) { return false; }))
     return std::nullopt;
   return T;

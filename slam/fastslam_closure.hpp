@@ -36,16 +36,6 @@ namespace slambox {
 
 struct PoseProposal;  // slam/landmark_ekf.hpp
 
-struct ClosureSettings {
-  double travel_m = 0;               ///< [m] the robot's travel so far
-  double heading_variance_rad2 = 0;  ///< [rad^2] dead reckoning's heading variance summed so far
-  double old_after_m = 0;            ///< [m] a landmark last seen more than this travel ago is old
-  double closing_m = 0;              ///< [m] the travel after old landmarks returned over which the loop closes
-  double gate_probability = 0.99;    ///< the innovation test's probability (chi-square, 2 dof per old landmark)
-  Eigen::Matrix2d R = Eigen::Matrix2d::Identity();  ///< observation covariance (range, bearing)
-  std::span<const DriftSample> drift;  ///< at every odometry time so far, oldest first
-};
-
 /// One step of the path since the old landmarks were seen: its position and the variances
 /// dead reckoning added over it; `heading_rad2_until` the summed heading variance at its end
 /// (a landmark's seen_heading_variance_rad2 finds its step).
@@ -90,9 +80,9 @@ std::vector<DriftStep> PathSince(const PathNode* newest, double since_rad2, std:
 bool RelaxParticle(FastSlamParticle& p, const SE2& corrected, std::span<const DriftStep> steps, const Eigen::Matrix3d& C,
                    double gate_chi2, double since_rad2, const std::function<bool(int)>& stays);
 
-/// Moves the particle's pose by T (covariance rotated) and each landmark by PartOfMotion(T,
-/// share(key, landmark)) (covariance rotated; share 0: stays).
-void MoveParticle(FastSlamParticle& p, const SE2& T, const std::function<double(int, const LandmarkGaussian&)>& share);
+/// Moves the particle's pose and each landmark `moves(key, landmark)` names rigidly by T
+/// (covariances rotated).
+void MoveParticle(FastSlamParticle& p, const SE2& T, const std::function<bool(int, const LandmarkGaussian&)>& moves);
 
 /// The Gauss-Newton pose of the closure: argmin over x of sum_j |z_j - h(m_j, x)|^2_{S_j} +
 /// |x - prior.mean|^2_{prior.covariance}, S_j = H_m Sigma_j H_m^T + R (x added as a vector,
@@ -100,12 +90,14 @@ void MoveParticle(FastSlamParticle& p, const SE2& T, const std::function<double(
 SE2 ClosurePose(const PoseProposal& prior, std::span<const std::pair<const LandmarkGaussian*, Eigen::Vector2d>> observed,
                 const Eigen::Matrix2d& R);
 
-/// Corrects `p` for a closure on its observations `observed` (landmark key, (range,
-/// bearing)) before the scan's update: if the old ones' joint innovation at the particle's
-/// prior exceeds the chi-square gate and the drift-prior pose explains them within it, the
-/// pose moves to that pose and each landmark last seen after the old ones as its path did
-/// (above). Returns the pose correction T = x' x^-1, or none.
-std::optional<SE2> CorrectClosure(FastSlamParticle& p, std::span<const std::pair<int, Eigen::Vector2d>> observed,
-                                  const ClosureSettings& settings);
+/// Corrects `p` for a closure on the scan's observations `z` (range, bearing) associated to
+/// landmark `keys` (negative: none) before the scan's update, with the options' travel, heading
+/// variance, drift, R and closure fields (ParticleUpdateOptions; the loop closes over one
+/// range_max of travel after old landmarks return): if the old ones' joint innovation at the
+/// particle's prior exceeds the chi-square gate and the drift-prior pose explains them within
+/// it, the pose moves to that pose and each landmark last seen since the stretch began as its
+/// path did (above). Returns the pose correction T = x' x^-1, or none.
+std::optional<SE2> CorrectClosure(FastSlamParticle& p, std::span<const int> keys, std::span<const Eigen::Vector2d> z,
+                                  const ParticleUpdateOptions& options);
 
 }  // namespace slambox

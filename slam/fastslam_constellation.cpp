@@ -59,7 +59,7 @@ int MoveAndMerge(FastSlamParticle& p, const std::vector<std::pair<int, int>>& pa
   if (!spread || !RelaxParticle(p, T * p.pose, steps, p.pose_covariance + PathDriftCovariance(steps, p.pose.translation()),
                                 gate_chi2, paired_rad2, is_held)) {
     MoveParticle(p, T, [&](int key, const LandmarkGaussian& lm) {
-      return !is_held(key) && travel_m - lm.seen_travel_m <= window_m ? 1.0 : 0.0;
+      return !is_held(key) && travel_m - lm.seen_travel_m <= window_m;
     });
   }
   int merged = 0;

@@ -146,14 +146,7 @@ ParticleUpdateSummary UpdateParticle(FastSlamParticle& p, const std::vector<Land
   ParticleUpdateSummary s;
   s.landmark_of.assign(scan.size(), -1);
   s.creates.assign(scan.size(), 0);
-  if (std::isfinite(o.closure_old_after_m)) {
-    std::vector<std::pair<int, Eigen::Vector2d>> observed;
-    for (size_t j = 0; j < z.size(); ++j)
-      if (a.key[j] >= 0) observed.emplace_back(a.key[j], z[j]);
-    const ClosureSettings closure{o.travel_m,        o.heading_variance_rad2, o.closure_old_after_m,
-                                  o.range_max_m,     o.closure_gate_prob,     o.R, o.drift};
-    s.closure = CorrectClosure(p, observed, closure).has_value();
-  }
+  if (std::isfinite(o.closure_old_after_m)) s.closure = CorrectClosure(p, a.key, z, o).has_value();
 
   if (o.fastslam2) {  // sample the pose from the proposal that includes the observations
     PoseProposal proposal{p.pose, p.pose_covariance};

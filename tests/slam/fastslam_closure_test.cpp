@@ -78,12 +78,13 @@ const Eigen::Vector2d kOldA(5.0, -3.0), kOldB(-4.0, 6.0), kBefore(0.0, -8.0);
 struct Lap {
   FastSlamParticle particle;
   std::vector<DriftSample> drift;
-  ClosureSettings settings;
-  std::vector<std::pair<int, Eigen::Vector2d>> observed;
+  ParticleUpdateOptions settings;
+  std::vector<int> keys;
+  std::vector<Eigen::Vector2d> z;
 };
 
-Lap MakeLap() {
-  Lap lap;
+// Fills `lap` in place: its settings hold a span of its own drift samples.
+void MakeLap(Lap& lap) {
   FastSlamParticle& p = lap.particle;
   SE2 believed, truth;
   for (int k = 0; k <= 100; ++k) {
@@ -108,15 +109,22 @@ Lap MakeLap() {
   SetLandmark(p.map, 1, landmark(kOldB, 2e-4));
   SetLandmark(p.map, 2, landmark(kBefore, 1e-4));  // seen before them: stays
   SetLandmark(p.map, 3, landmark(p.pose * Eigen::Vector2d(6.0, 1.0), 1e-4 * 101));  // seen at the end
-  lap.settings = {125.0, 1e-4 * 101, 96.0, 12.0, 0.99, Eigen::Vector2d(1e-4, 1e-6).asDiagonal(), lap.drift};
-  lap.observed = {{0, PredictObservation(SE2(), kOldA).z}, {1, PredictObservation(SE2(), kOldB).z}};
-  return lap;
+  lap.settings.travel_m = 125.0;
+  lap.settings.heading_variance_rad2 = 1e-4 * 101;
+  lap.settings.closure_old_after_m = 96.0;
+  lap.settings.range_max_m = 12.0;
+  lap.settings.closure_gate_prob = 0.99;
+  lap.settings.R = Eigen::Vector2d(1e-4, 1e-6).asDiagonal();
+  lap.settings.drift = lap.drift;
+  lap.keys = {0, 1};
+  lap.z = {PredictObservation(SE2(), kOldA).z, PredictObservation(SE2(), kOldB).z};
 }
 
 TEST(FastSlamClosure, ADriftedReturnMovesThePoseAndTheLapsMap) {
-  Lap lap = MakeLap();
+  Lap lap;
+  MakeLap(lap);
   const Eigen::Vector2d seen_at_end = lap.particle.pose.inverse() * FindLandmark(lap.particle.map, 3)->mean;
-  ASSERT_TRUE(CorrectClosure(lap.particle, lap.observed, lap.settings).has_value());
+  ASSERT_TRUE(CorrectClosure(lap.particle, lap.keys, lap.z, lap.settings).has_value());
   const SE2& pose = lap.particle.pose;
   EXPECT_NEAR(pose.x, 0.0, 0.01);  // the two old landmarks fix all three dof
   EXPECT_NEAR(pose.y, 0.0, 0.01);
@@ -141,13 +149,14 @@ TEST(FastSlamClosure, ADriftedReturnMovesThePoseAndTheLapsMap) {
 TEST(FastSlamClosure, OnlyTheStretchSinceThePathLastSawItsOldMapRelaxes) {
   // The particle re-observed old landmarks halfway (heading variance 5e-3, travel 20 m, more
   // than the window before now): the loop closed then, so the half before stays.
-  Lap lap = MakeLap();
+  Lap lap;
+  MakeLap(lap);
   lap.particle.old_seen_travel_m = 20.0;
   lap.particle.old_seen_heading_rad2 = 5e-3;
   LandmarkGaussian early = *FindLandmark(lap.particle.map, 3);
   early.seen_heading_variance_rad2 = 3e-3;  // seen before the anchor
   SetLandmark(lap.particle.map, 4, early);
-  ASSERT_TRUE(CorrectClosure(lap.particle, lap.observed, lap.settings).has_value());
+  ASSERT_TRUE(CorrectClosure(lap.particle, lap.keys, lap.z, lap.settings).has_value());
   EXPECT_EQ(lap.particle.closure_since_rad2, 5e-3);
   EXPECT_EQ(FindLandmark(lap.particle.map, 4)->mean, early.mean);
   const std::vector<PoseEstimate> path = RelaxedPath(lap.particle.path, lap.particle.relaxations.get(), lap.drift);
@@ -159,7 +168,8 @@ TEST(FastSlamClosure, OnlyTheStretchSinceThePathLastSawItsOldMapRelaxes) {
 TEST(FastSlamClosure, ACorrectionTheDriftMakesUnlikelyIsNotSpread) {
   // The lap's steps under its own drift prior C: a 10 m shift without a turn is dx^T C^-1 dx
   // far beyond the 3-dof gate (it would be spread as turns of opposite signs along the path).
-  Lap lap = MakeLap();
+  Lap lap;
+  MakeLap(lap);
   const std::vector<DriftStep> steps = PathSince(lap.particle.path.get(), 2e-4, lap.drift);
   ASSERT_EQ(steps.size(), 100u);  // the steps since the old sightings, the first one's end at 2e-4
   const Eigen::Matrix3d C = PathDriftCovariance(steps, lap.particle.pose.translation());
@@ -178,15 +188,18 @@ TEST(FastSlamClosure, ACorrectionTheDriftMakesUnlikelyIsNotSpread) {
 }
 
 TEST(FastSlamClosure, NoClosureWhereThePriorExplainsTheReturnOrNoStretchWithoutOldLandmarksPreceded) {
-  Lap lap = MakeLap();
+  Lap lap;
+  MakeLap(lap);
   lap.particle.pose = SE2();  // at the truth: the innovation passes the gate
-  EXPECT_FALSE(CorrectClosure(lap.particle, lap.observed, lap.settings).has_value());
-  Lap again = MakeLap();
+  EXPECT_FALSE(CorrectClosure(lap.particle, lap.keys, lap.z, lap.settings).has_value());
+  Lap again;
+  MakeLap(again);
   again.particle.old_seen_travel_m = 100.0;  // old landmarks seen 25 m ago: the loop was closed before
-  EXPECT_FALSE(CorrectClosure(again.particle, again.observed, again.settings).has_value());
-  Lap young = MakeLap();
+  EXPECT_FALSE(CorrectClosure(again.particle, again.keys, again.z, again.settings).has_value());
+  Lap young;
+  MakeLap(young);
   young.settings.travel_m = 90.0;  // within the widest window: nothing is old
-  EXPECT_FALSE(CorrectClosure(young.particle, young.observed, young.settings).has_value());
+  EXPECT_FALSE(CorrectClosure(young.particle, young.keys, young.z, young.settings).has_value());
 }
 
 }  // namespace
