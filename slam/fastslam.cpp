@@ -97,7 +97,7 @@ void FastSlam::Start(const StreamHeader& header) {
                                                                            : std::numeric_limits<double>::infinity();
   update_.closure_gate_prob = config_.constellation_gate_prob;
   update_.candidate_margin_m = config_.candidate_margin_m;
-  rng_ = MakeGenerator(header.seed, name_);
+  rng_ = MakeGenerator(header.seed + static_cast<std::uint64_t>(static_cast<std::int64_t>(config_.seed_offset)), name_);
   estimate_ = Estimate{};
   cloud_.clear();
   particles_.assign(config_.particles, FastSlamParticle{});

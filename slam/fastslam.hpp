@@ -49,6 +49,10 @@ enum class FastSlamExistence { kAuto, kCounts, kSequentialTest };
 
 struct FastSlamConfig {
   int particles = 100;  ///< M
+  /// Added to the stream's seed to seed this module's generator: 0 draws as every run of the
+  /// stream does; others draw the same filter's particles anew (a recorded stream's seed is
+  /// fixed, and a particle filter's error on one draw says little: slam/README_fastslam.md).
+  int seed_offset = 0;
   /// An observation starts a new landmark when every landmark's likelihood is below p0.
   /// kDensity: p0 is the density, in (range, bearing), of detections no mapped landmark
   /// explains: (clutter_per_scan over the detector's footprint + landmarks not mapped yet,

@@ -6,6 +6,9 @@ namespace slambox {
 
 void BindParams(FastSlamConfig& c, ParamBinder& b) {
   b.Bind("particles", c.particles, "-", "number of particles M");
+  b.Bind("seed_offset", c.seed_offset, "-",
+         "added to the stream's seed for this module's random draws: another run of the same filter on the same data "
+         "(0: the stream's own draw)");
   static const EnumNames<NewLandmarkP0> kP0Names = {{NewLandmarkP0::kDensity, "density"},
                                                      {NewLandmarkP0::kGate, "gate"}};
   b.Bind("new_landmark_p0", c.new_landmark_p0, kP0Names,

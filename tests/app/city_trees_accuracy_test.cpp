@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <limits>
+#include <string>
 
 #include "app/graph_log.hpp"
 #include "app/registry.hpp"
@@ -39,13 +39,9 @@ TEST(CityTrees, ConvertedGraphReplaysWithGroundTruth) {
   ASSERT_EQ(s.header.world.landmarks.size(), 100u);
   const EvalOptions options = RunEvalOptions(s, "");
   // Measured (this test prints them): ate_rmse_m 51.36 (dead reckoning: deterministic),
-  // 1.751, 0.5085, 2.66 (fastslam2 2.176 before its closure by re-observation, 9.10 when the
-  // closure spread over the whole path since the old sighting, loops closed in between
-  // ignored: slam/README_fastslam.md); anees 2.159, 4.676, 2.399, 15423 (fastslam2's pose
-  // covariance is far smaller than its error; not checked).
-  const double kUnchecked = std::numeric_limits<double>::infinity();
+  // 1.751, 0.5085; anees 2.159, 4.676, 2.399.
   for (const Expected& x : {Expected{"odometry", 50.8, 51.9, 3.0}, Expected{"ekf-slam", 0.0, 2.5, 7.0},
-                            Expected{"graphslam", 0.0, 0.8, 4.0}, Expected{"fastslam2", 0.0, 3.5, kUnchecked}}) {
+                            Expected{"graphslam", 0.0, 0.8, 4.0}}) {
     auto module = FindModule(x.module).create({});
     const ModuleRun run = ReplayAndScore(*module, s, options);
     ASSERT_EQ(run.metrics.status, RunStatus::kOk) << x.module << ": " << run.metrics.reason;
@@ -56,6 +52,26 @@ TEST(CityTrees, ConvertedGraphReplaysWithGroundTruth) {
     EXPECT_LT(ate, x.max_ate_m) << x.module;
     EXPECT_LT(run.metrics.anees, x.max_anees) << x.module;
   }
+  // FastSLAM 2.0 (50 particles) differs from draw to draw far more than any change of its
+  // defaults does: over seed_offset 0..15 its ATE RMSE spans 2.2 to 14.1 m (mean 7.25;
+  // without the closure by re-observation 1.7 to 13.6 m, mean 6.88: slam/README_fastslam.md,
+  // "cityTrees10000: one draw says little"). One draw against a bound would fail on any
+  // change that consumes the generator differently, so the mean of eight draws is checked
+  // (measured 7.61, its standard error about 1.3 m) and every draw against divergence
+  // (measured at most 14.1 m). Its pose covariance is far smaller than its error (anees
+  // 15423 on draw 0): not checked.
+  double sum_m = 0.0;
+  const int draws = 8;
+  for (int k = 0; k < draws; ++k) {
+    auto module = FindModule("fastslam2").create({{"seed_offset", std::to_string(k)}});
+    const ModuleRun run = ReplayAndScore(*module, s, options);
+    ASSERT_EQ(run.metrics.status, RunStatus::kOk) << "fastslam2 draw " << k << ": " << run.metrics.reason;
+    std::printf("cityTrees10000 fastslam2 seed_offset %d: ate_rmse_m %.4g, landmark_rmse_m %.4g\n", k,
+                run.metrics.ate.rmse, run.metrics.landmark_rmse_m);
+    EXPECT_LT(run.metrics.ate.rmse, 25.0) << "draw " << k;
+    sum_m += run.metrics.ate.rmse;
+  }
+  EXPECT_LT(sum_m / draws, 11.0);
 }
 
 }  // namespace
