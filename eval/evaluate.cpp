@@ -97,7 +97,10 @@ void AddConsistency(const Association& a, const Estimate& est, const EvalOptions
 void AddLandmarks(const GroundTruth& gt, const Estimate& est, const EvalOptions& o, const AlignmentResult& umeyama,
                   Metrics& m, ErrorSeries& series) {
   if (gt.trajectory.empty()) return;  // no ground truth (a converted log): nothing to compare with (null)
-  if (est.landmarks.empty()) return;  // a module without a landmark map: not applicable (null)
+  // A module without a landmark map: not applicable (null). One that reported what it did with
+  // the detections (observation_assignments) and kept no landmark mapped none: it missed every
+  // true one (a sweep's averages must not skip its run as if it had no map).
+  if (est.landmarks.empty() && est.observation_assignments.empty()) return;
   const SE2 T = umeyama.valid ? umeyama.T_gt_est : SE2();
   const LandmarkMapResult r = EvaluateLandmarkMap(est.landmarks, gt.world.landmarks, T, o.landmarks);
   m.landmark_rmse_m = r.rmse_m;

@@ -105,6 +105,20 @@ TEST(Evaluate, AlignModesAndLandmarks) {
   o.align = AlignMode::kOrigin;
   EXPECT_NEAR(ToJson(EvaluateEstimate(gt, est, o).metrics)["ate_rmse_m"].get<double>(), 0.0, 1e-9);
 
+  // A landmark module that kept no landmark (it reported its detections' assignments) missed
+  // every true one; a module that reports neither has no landmark map (null).
+  Estimate empty = Copy(gt);
+  const nlohmann::json none = ToJson(EvaluateEstimate(gt, empty, o).metrics);
+  EXPECT_TRUE(none["landmark_missed"].is_null());
+  EXPECT_TRUE(none["landmark_matched"].is_null());
+  empty.observation_assignments.push_back({0, 0, -1, false});
+  const nlohmann::json lost = ToJson(EvaluateEstimate(gt, empty, o).metrics);
+  EXPECT_EQ(lost["landmark_missed"], static_cast<int>(gt.world.landmarks.size()));
+  EXPECT_EQ(lost["landmark_matched"], 0);
+  EXPECT_EQ(lost["landmark_spurious"], 0);
+  EXPECT_TRUE(lost["landmark_rmse_m"].is_null());  // no match to average over
+  ASSERT_FALSE(gt.world.landmarks.empty());
+
   // A trajectory from another tool in its own far-away frame: runaway unless aligned.
   Estimate foreign = Copy(gt);
   for (auto& p : foreign.trajectory) p.pose = SE2(500, 300, 2.0) * p.pose;
