@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include "core/chi_square.hpp"
 #include "core/error.hpp"
 #include "core/limits.hpp"
 #include "core/odometry_model.hpp"
@@ -96,6 +97,7 @@ void FastSlam::Start(const StreamHeader& header) {
   update_.closure_old_after_m = config_.closure_spread && update_.known_ids ? RevisitWidestWindow(lm.range_max_m)
                                                                            : std::numeric_limits<double>::infinity();
   update_.closure_gate_prob = config_.constellation_gate_prob;
+  update_.drift_gate_chi2 = ChiSquareQuantile(config_.constellation_gate_prob, 3.0);
   update_.candidate_margin_m = config_.candidate_margin_m;
   rng_ = MakeGenerator(header.seed + static_cast<std::uint64_t>(static_cast<std::int64_t>(config_.seed_offset)), name_);
   estimate_ = Estimate{};

@@ -247,9 +247,7 @@ std::optional<SE2> CorrectClosure(FastSlamParticle& p, std::span<const int> keys
   // ... and only where the drift explains them (else the association, not the pose, is wrong).
   if (JointInnovation({corrected, Eigen::Matrix3d::Zero()}, old, s.R) > gate) return std::nullopt;
   const SE2 T = corrected * p.pose.inverse();
-  if (!RelaxParticle(p, corrected, steps, C, ChiSquareQuantile(s.closure_gate_prob, 3.0), since_rad2,
-                     [](int) { return false; }))
-    return std::nullopt;
+  if (!RelaxParticle(p, corrected, steps, C, s.drift_gate_chi2, since_rad2, [](int) { return false; })) return std::nullopt;
   return T;
 }
 

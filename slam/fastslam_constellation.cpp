@@ -146,7 +146,7 @@ int FastSlam::MergeConstellation(double t_s) {
   int merged_best = 0;
   for (size_t i = 0; i < particles_.size(); ++i) {
     const int merged = MoveAndMerge(particles_[i], pairs, travel_m_, revisit->window_m, config_.constellation_spread, drift_,
-                                    ChiSquareQuantile(config_.constellation_gate_prob, 3.0));
+                                    update_.drift_gate_chi2);
     if (static_cast<int>(i) == best) merged_best = merged;
   }
   // Every path gets the pose at t_s (moved or not), so that all paths keep the same times.

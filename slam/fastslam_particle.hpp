@@ -117,10 +117,13 @@ struct ParticleUpdateOptions {
   double heading_variance_rad2 = 0.0;
   /// Loop closure by re-observation (FastSlamConfig::closure_spread; slam/fastslam_closure.hpp):
   /// landmarks last seen more than `closure_old_after_m` of travel ago whose joint innovation
-  /// fails the chi-square gate of `closure_gate_prob` move the pose, and the map drawn since
-  /// them takes its share (off: closure_old_after_m infinite).
+  /// fails the chi-square gate of `closure_gate_prob` move the pose, and the path since them
+  /// relaxes (off: closure_old_after_m infinite). A relaxation (closure or constellation
+  /// revisit) refuses a correction dx with dx^T C^-1 dx above `drift_gate_chi2`, chi2_3 at that
+  /// probability (RelaxParticle).
   double closure_old_after_m = std::numeric_limits<double>::infinity();
   double closure_gate_prob = 0.99;
+  double drift_gate_chi2 = 11.345;  ///< chi2_3(0.99); FastSlam::Start: chi2_3(constellation_gate_prob)
   std::span<const DriftSample> drift;  ///< at every odometry time so far, oldest first
   WaldThresholds wald;
   double new_log_ratio = 0.0;           ///< log prior odds of a new landmark (NewLandmarkPriorLogRatio)

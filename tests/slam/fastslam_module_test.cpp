@@ -119,7 +119,8 @@ TEST(FastSlamModule, SeedOffsetDrawsAnew) {
   c.particles = 20;
   const Estimate base = RunModule<FastSlam>(s, c, true);
   c.seed_offset = 5;
-  const Estimate offset = RunModule<FastSlam>(s, c, true), same = RunModule<FastSlam>(moved, FastSlamConfig{.particles = 20}, true);
+  const Estimate offset = RunModule<FastSlam>(s, c, true);
+  const Estimate same = RunModule<FastSlam>(moved, FastSlamConfig{.particles = 20}, true);
   ASSERT_EQ(base.trajectory.size(), offset.trajectory.size());
   ASSERT_EQ(offset.trajectory.size(), same.trajectory.size());
   bool differs = false;
