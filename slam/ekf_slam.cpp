@@ -97,6 +97,13 @@ void BindParams(EkfSlamConfig& c, ParamBinder& b) {
          "unobservable (not with fej=true or update_iterations > 1: those linearize the standard error)");
   b.Bind("update_iterations", c.update_iterations, "-",
          "iterated EKF: Gauss-Newton steps of each scan's update, relinearized at the iterate (1 = plain EKF)", AtLeast(1));
+  b.Bind("relinearize_step_prob", c.relinearize_step_prob, "-",
+         "a scan's update whose EKF step moves the robot improbably far under the prior (squared Mahalanobis "
+         "length beyond this chi2 quantile, 3 dof) is iterated as with update_iterations: the linearization at the "
+         "prior cannot carry a correction of many sigmas (e.g. a landmark re-sighted after a long drift); 0 = never "
+         "(not with fej=true or invariant=true, which keep their own linearization)");
+  b.Bind("relinearize_iterations", c.relinearize_iterations, "-",
+         "Gauss-Newton steps of an update iterated by relinearize_step_prob", AtLeast(1));
   b.Bind("motion_noise_scale", c.motion_noise_scale, "-", "factor on the odometry model's covariance", Above(0));
   b.Bind("observation_noise_scale", c.observation_noise_scale, "-", "factor on the range-bearing covariance", Above(0));
 }
@@ -109,6 +116,8 @@ EkfSlam::EkfSlam(const EkfSlamConfig& config) : config_(config) {
   if (!(config.merge_probability >= 0 && config.merge_probability < 1))
     fail("merge_probability", "must lie in [0, 1)", "e.g. 0.99, or 0 to never merge");
   if (!(config.tentative_max_age_s > 0)) fail("tentative_max_age_s", "must be positive", "e.g. 2");
+  if (!(config.relinearize_step_prob >= 0 && config.relinearize_step_prob < 1))
+    fail("relinearize_step_prob", "must lie in [0, 1)", "e.g. 0.99, or 0 to never relinearize");
   if (config.fej && config.update_iterations > 1)
     fail("update_iterations", "cannot relinearize with first-estimates Jacobians (fej=true)", "set fej=false or update_iterations=1");
 }
@@ -117,6 +126,7 @@ void EkfSlam::Start(const StreamHeader& header) {
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
   const LandmarkSensorConfig sensor = header.sensors.landmarks.value_or(LandmarkSensorConfig{});
   R_ = config_.observation_noise_scale * ObservationCovariance(sensor);
+  relinearize_gate_chi2_ = config_.relinearize_step_prob > 0 ? ChiSquareQuantile(config_.relinearize_step_prob, 3.0) : 0.0;
   range_max_m_ = sensor.range_max_m;
   half_fov_rad_ = sensor.fov_deg * M_PI / 360.0;
   // The footprint is the circular sector of radius range_max and angle fov: r^2 * half_fov.
@@ -242,10 +252,14 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
     tracks_[j].seen_heading_variance_rad2 = heading_variance_rad2_;
     ++tracks_[j].existence;
   }
-  const EkfUpdateResult update = config_.update_iterations > 1 ? IteratedUpdateState(state_, measured, R_, config_.update_iterations)
-                                 : config_.invariant && !config_.fej ? InvariantUpdateState(state_, lin, R_)
-                                                                  : UpdateState(state_, lin, R_);
+  const bool gated = relinearize_gate_chi2_ > 0 && !config_.fej && !config_.invariant;
+  const EkfUpdateResult update =
+      config_.update_iterations > 1 ? IteratedUpdateState(state_, measured, R_, config_.update_iterations)
+      : gated                       ? IteratedUpdateState(state_, measured, R_, config_.relinearize_iterations, relinearize_gate_chi2_)
+      : config_.invariant && !config_.fej ? InvariantUpdateState(state_, lin, R_)
+                                          : UpdateState(state_, lin, R_);
   if (!update.applied && !lin.empty()) Record(event.t_s, "update_rejected", 1.0);
+  if (gated && update.iterations > 1) Record(event.t_s, "update_relinearized", update.iterations);
 
   int created = 0, discarded = 0;
   for (size_t i = 0; i < obs.size(); ++i) created += target[i] == Association::kNew ? 1 : 0;

@@ -87,6 +87,10 @@ struct EkfSlamConfig {
   bool fej = false;                     ///< first-estimates Jacobians (FEJ-EKF)
   bool invariant = false;               ///< right-invariant error (Invariant EKF, Barrau & Bonnabel 2015; slam/ekf_slam_filter.hpp)
   int update_iterations = 1;            ///< [-] iterated EKF update: relinearizations per scan (1 = EKF; slam/ekf_slam_filter.hpp)
+  /// [-] an update whose robot step is improbable under the prior (beyond this chi2_3 quantile)
+  /// is iterated, up to relinearize_iterations (0 = never; not with fej or invariant)
+  double relinearize_step_prob = 0.99;
+  int relinearize_iterations = 10;     ///< [-] Gauss-Newton steps of such an update
   double motion_noise_scale = 1.0;      ///< [-] factor on the odometry model's covariance
   double observation_noise_scale = 1.0; ///< [-] factor on the range-bearing covariance
 };
@@ -235,6 +239,7 @@ class EkfSlam : public SlamModule {
   int first_birth_scan_ = -1;     ///< that scan (-1: none yet)
   int next_key_ = 0;
   double travel_m_ = 0.0;  ///< [m] the odometry's path length so far
+  double relinearize_gate_chi2_ = 0.0;  ///< chi2_3(relinearize_step_prob), 0 = off (Start)
   double heading_variance_rad2_ = 0.0;  ///< [rad^2] the motion model's heading variance summed over every odometry step so far
   std::deque<std::pair<double, SE2>> scan_path_;  ///< per landmark scan of the widest window: travel [m] and the pose after its update (constellation_merges)
   std::vector<int> constellation_searched_;  ///< keys of the recent landmarks of the last constellation search

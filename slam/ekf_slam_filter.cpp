@@ -170,13 +170,14 @@ EkfUpdateResult InvariantUpdateState(EkfSlamState& s, const std::vector<Lineariz
 }
 
 EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkMeasurement>& m,
-                                    const Eigen::Matrix2d& R, int iterations) {
+                                    const Eigen::Matrix2d& R, int iterations, double step_gate_chi2) {
   EkfUpdateResult result;
   if (m.empty()) return result;
   const Eigen::VectorXd prior = s.mean;
   Eigen::VectorXd x = prior;  // the iterate x_i
   std::vector<LinearizedObservation> lin(m.size());
   BatchGain g;
+  const Eigen::Matrix3d P_rr = s.covariance.topLeftCorner<3, 3>();  // the prior's robot block
   for (int i = 0; i < std::max(1, iterations); ++i) {
     const SE2 pose{x(0), x(1), x(2)};
     // d = x̂ - x_i on the robot and on each measured landmark (heading wrapped).
@@ -202,7 +203,12 @@ EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkM
     Eigen::VectorXd step = next - x;
     step(2) = NormalizeAngle(step(2));
     x = next;
+    result.iterations = i + 1;
     if (step.lpNorm<Eigen::Infinity>() < 1e-9) break;
+    if (i == 0 && step_gate_chi2 > 0.0) {  // the EKF step: is it small enough to trust h's tangent?
+      const Eigen::Vector3d d = step.head<3>();
+      if (d.dot(P_rr.ldlt().solve(d)) < step_gate_chi2) break;
+    }
   }
   result.applied = true;
   result.dof = 2 * static_cast<int>(m.size());

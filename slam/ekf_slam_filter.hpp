@@ -52,6 +52,7 @@ struct EkfUpdateResult {
   bool applied = false;  ///< false: the innovation covariance was not positive definite
   double nis = 0.0;      ///< joint ν^T S^-1 ν of the batch
   int dof = 0;           ///< 2 * number of observations
+  int iterations = 0;    ///< linearizations used (IteratedUpdateState; 1 = the plain EKF step)
 };
 
 /// Batched update with all observations of one scan, Joseph form
@@ -96,7 +97,13 @@ struct LandmarkMeasurement {
 /// bearings and the heading difference wrapped, until a step moves the state less than 1e-9
 /// (m, rad) or `iterations` are done; P' in Joseph form with the last K_i and H_i. The NIS is
 /// the one at x̂ (the filter's consistency). iterations = 1 is UpdateState at x̂, bit for bit.
+///
+/// step_gate_chi2 > 0 iterates only an update the linearization at x̂ cannot carry: past the
+/// first (EKF) step δ only if its robot part is improbable under the prior,
+/// δ_r^T P_rr^-1 δ_r >= step_gate_chi2 (e.g. a re-sighting after a long drift that turns the
+/// robot by many of its heading sigmas, where h's curvature over the step is not negligible).
+/// Below the gate the result is UpdateState's, bit for bit.
 EkfUpdateResult IteratedUpdateState(EkfSlamState& state, const std::vector<LandmarkMeasurement>& measurements,
-                                    const Eigen::Matrix2d& R, int iterations);
+                                    const Eigen::Matrix2d& R, int iterations, double step_gate_chi2 = 0.0);
 
 }  // namespace slambox

@@ -1,7 +1,9 @@
 // The iterated EKF update (IteratedUpdateState): one iteration is the EKF's update bit for
 // bit; at convergence it is the maximum of the posterior (the gradient of the negative log
 // posterior, by central differences, vanishes), which the EKF's single step is not when the
-// heading is uncertain; and bearings and heading wrap at +-pi exactly as away from it.
+// heading is uncertain; bearings and heading wrap at +-pi exactly as away from it; and with a
+// step gate, an update whose EKF step the prior can carry stays the EKF's bit for bit while one
+// of many sigmas is iterated to the maximum.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -106,6 +108,52 @@ TEST(EkfIteratedUpdate, ConvergesToThePosteriorMaximumWhereTheEkfStepDoesNot) {
   EXPECT_LT(iekf.covariance(2, 2), prior.covariance(2, 2));
 }
 
+/// The robot part of the EKF step from `prior` (squared Mahalanobis length under P_rr).
+double EkfStepChi2(const EkfSlamState& prior, const std::vector<LandmarkMeasurement>& m) {
+  EkfSlamState ekf = prior;
+  UpdateState(ekf, LinearizeAt(ekf, m), kR);
+  Eigen::Vector3d d = ekf.mean.head<3>() - prior.mean.head<3>();
+  d(2) = NormalizeAngle(d(2));
+  return d.dot(prior.covariance.topLeftCorner<3, 3>().ldlt().solve(d));
+}
+
+TEST(EkfIteratedUpdate, StepGateKeepsTheEkfStepItCanCarryBitForBit) {
+  // A truth within the prior's spread: the EKF step is short, the gate (chi2_3(0.99) = 11.34)
+  // does not open and the result is UpdateState's exactly, with one linearization.
+  std::mt19937_64 rng(3);
+  const EkfSlamState prior = UncertainState(rng, SE2(1.0, -2.0, 0.4), 5, 0.2);
+  const std::vector<LandmarkMeasurement> m = Measure(prior, SE2(1.05, -1.95, 0.45), {0.0, 0.0});
+  ASSERT_LT(EkfStepChi2(prior, m), 11.34);
+  EkfSlamState ekf = prior, gated = prior;
+  const EkfUpdateResult a = UpdateState(ekf, LinearizeAt(ekf, m), kR);
+  const EkfUpdateResult b = IteratedUpdateState(gated, m, kR, 20, 11.34);
+  EXPECT_EQ(b.iterations, 1);
+  EXPECT_EQ(a.nis, b.nis);
+  EXPECT_TRUE(ekf.mean == gated.mean);
+  EXPECT_TRUE(ekf.covariance == gated.covariance);
+}
+
+TEST(EkfIteratedUpdate, StepGateIteratesAStepOfManySigmas) {
+  // A re-sighting after a drift: heading sigma 0.12 rad, truth 0.6 rad (5 sigma) off. The
+  // EKF step is many sigmas long, the gate opens and the result is the fully iterated one
+  // (the posterior's maximum), not the EKF's.
+  std::mt19937_64 rng(7);
+  EkfSlamState prior = UncertainState(rng, SE2(0.0, 0.0, 0.1), 4, 0.12);
+  prior.covariance.block<2, 2>(3, 3) += 4.0 * Eigen::Matrix2d::Identity();
+  const std::vector<LandmarkMeasurement> m = Measure(prior, SE2(0.4, 0.3, 0.7), {0.0, 0.0});
+  const double chi2 = EkfStepChi2(prior, m);
+  ASSERT_GT(chi2, 11.34);
+  EkfSlamState full = prior, gated = prior, closed = prior;
+  IteratedUpdateState(full, m, kR, 20);
+  const EkfUpdateResult r = IteratedUpdateState(gated, m, kR, 20, 11.34);
+  EXPECT_GT(r.iterations, 2);
+  EXPECT_TRUE(full.mean == gated.mean);
+  EXPECT_TRUE(full.covariance == gated.covariance);
+  // A gate just above this step's length keeps the EKF step: the test is on that length.
+  EXPECT_EQ(IteratedUpdateState(closed, m, kR, 20, chi2 * 1.001).iterations, 1);
+  EXPECT_LT(Gradient(gated.mean, prior, m, kR).norm(), 1e-3 * Gradient(closed.mean, prior, m, kR).norm());
+}
+
 TEST(EkfIteratedUpdate, WrapsAtPiAsAwayFromIt) {
   // The same problem twice: heading near +pi with the truth across the wrap, and rotated by
   // -pi about the origin (heading near 0). Ranges and bearings are unchanged by the
@@ -126,8 +174,10 @@ TEST(EkfIteratedUpdate, WrapsAtPiAsAwayFromIt) {
   EXPECT_LT(at_pi.mean(2), -2.9);                                 // crossed the wrap to the truth's side
   EXPECT_NEAR(NormalizeAngle(at_pi.mean(2) - truth.theta), 0.0, 0.02);  // and found the truth's heading
   EXPECT_NEAR(NormalizeAngle(at_zero.mean(2) + M_PI - at_pi.mean(2)), 0.0, 1e-9);
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (i != 2) EXPECT_NEAR(at_zero.mean(i), -at_pi.mean(i), 1e-9) << i;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (i == 2) continue;
+    EXPECT_NEAR(at_zero.mean(i), -at_pi.mean(i), 1e-9) << i;
+  }
   EXPECT_LT((at_zero.covariance - t.asDiagonal() * at_pi.covariance * t.asDiagonal()).norm(), 1e-9);
 }
 
