@@ -3,7 +3,6 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "slam/range_bearing.hpp"
 
@@ -176,7 +175,10 @@ EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkM
   const Eigen::VectorXd prior = s.mean;
   Eigen::VectorXd x = prior;  // the iterate x_i
   std::vector<LinearizedObservation> lin(m.size());
-  BatchGain g;
+  // The last iterate's gain and the next one's, alternating: never copied or swapped (a
+  // default-constructed Eigen::LLT holds an uninitialized ComputationInfo that a copy reads).
+  BatchGain gains[2];
+  int last = -1;
   const Eigen::Matrix3d P_rr = s.covariance.topLeftCorner<3, 3>();  // the prior's robot block
   for (int i = 0; i < std::max(1, iterations); ++i) {
     const SE2 pose{x(0), x(1), x(2)};
@@ -189,12 +191,13 @@ EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkM
       lin[j] = {m[j].landmark, Innovation(m[j].z, p.z), p.J_z_pose, p.J_z_landmark};
       if (i > 0) lin[j].innovation -= p.J_z_pose * d_pose + p.J_z_landmark * (prior.segment<2>(a) - x.segment<2>(a));
     }
-    BatchGain trial;
-    if (!ComputeGain(s, lin, R, trial)) {
+    const int next_gain = last == 0 ? 1 : 0;
+    if (!ComputeGain(s, lin, R, gains[next_gain])) {
       if (i == 0) return result;  // not positive definite at the prior: nothing applied
       break;                      // keep the last iterate and its gain
     }
-    std::swap(g, trial);
+    last = next_gain;
+    const BatchGain& g = gains[last];
     const Eigen::VectorXd nu = StackedInnovations(lin);
     if (i == 0) result.nis = nu.dot(g.llt.solve(nu));
     Eigen::VectorXd next = prior;
@@ -213,7 +216,7 @@ EkfUpdateResult IteratedUpdateState(EkfSlamState& s, const std::vector<LandmarkM
   result.applied = true;
   result.dof = 2 * static_cast<int>(m.size());
   s.mean = x;
-  JosephUpdate(s.covariance, g);
+  JosephUpdate(s.covariance, gains[last]);
   return result;
 }
 
