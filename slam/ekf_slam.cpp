@@ -231,20 +231,26 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
   const auto& obs = event.observations;
   const std::vector<double> mu = ExpectedClutterInGates();  // the gates the pairings were made in
 
-  // One batched update with every matched observation, linearized at the current
-  // estimate, or for FEJ at the robot's prior and the landmark's first estimate.
+  // One batched update with every matched observation: iterated (always, or where the EKF
+  // step is improbable under the prior), which linearizes itself; else linearized here at the
+  // current estimate, or for FEJ at the robot's prior and the landmark's first estimate.
+  const bool iterate_all = config_.update_iterations > 1;
+  const bool gated = !iterate_all && relinearize_gate_chi2_ > 0 && !config_.fej && !config_.invariant;
   std::vector<int> keys(obs.size(), -1);
   std::vector<LinearizedObservation> lin;
-  std::vector<LandmarkMeasurement> measured;  // the same, for the iterated update (it linearizes itself)
+  std::vector<LandmarkMeasurement> measured;  // for the iterated update
   std::vector<bool> matched(tracks_.size(), false);
   const SE2 pose = state_.Pose();
   for (size_t i = 0; i < obs.size(); ++i) {
     const int j = target[i];
     if (j < 0) continue;
-    const ObservationPrediction p = PredictObservation(pose, state_.Landmark(j));
-    const ObservationPrediction J = config_.fej ? PredictObservation(pose, tracks_[j].first_estimate) : p;
-    lin.push_back({j, Innovation(z[i], p.z), J.J_z_pose, J.J_z_landmark});
-    measured.push_back({j, z[i]});
+    if (iterate_all || gated) {
+      measured.push_back({j, z[i]});
+    } else {
+      const ObservationPrediction p = PredictObservation(pose, state_.Landmark(j));
+      const ObservationPrediction J = config_.fej ? PredictObservation(pose, tracks_[j].first_estimate) : p;
+      lin.push_back({j, Innovation(z[i], p.z), J.J_z_pose, J.J_z_landmark});
+    }
     matched[j] = true;
     keys[i] = tracks_[j].key;
     ++tracks_[j].sightings;
@@ -252,13 +258,12 @@ std::vector<int> EkfSlam::ApplyScan(const LandmarkEvent& event, const std::vecto
     tracks_[j].seen_heading_variance_rad2 = heading_variance_rad2_;
     ++tracks_[j].existence;
   }
-  const bool gated = relinearize_gate_chi2_ > 0 && !config_.fej && !config_.invariant;
   const EkfUpdateResult update =
-      config_.update_iterations > 1 ? IteratedUpdateState(state_, measured, R_, config_.update_iterations)
-      : gated                       ? IteratedUpdateState(state_, measured, R_, config_.relinearize_iterations, relinearize_gate_chi2_)
+      iterate_all ? IteratedUpdateState(state_, measured, R_, config_.update_iterations)
+      : gated     ? IteratedUpdateState(state_, measured, R_, config_.relinearize_iterations, relinearize_gate_chi2_)
       : config_.invariant && !config_.fej ? InvariantUpdateState(state_, lin, R_)
                                           : UpdateState(state_, lin, R_);
-  if (!update.applied && !lin.empty()) Record(event.t_s, "update_rejected", 1.0);
+  if (!update.applied && !(lin.empty() && measured.empty())) Record(event.t_s, "update_rejected", 1.0);
   if (gated && update.iterations > 1) Record(event.t_s, "update_relinearized", update.iterations);
 
   int created = 0, discarded = 0;

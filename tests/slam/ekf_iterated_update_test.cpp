@@ -72,6 +72,16 @@ Eigen::VectorXd Gradient(const Eigen::VectorXd& x, const EkfSlamState& prior, co
   return g;
 }
 
+/// A robot at (0, 0, 0.1) with heading sigma `sigma_theta` and four landmarks (landmark 0
+/// new-ish: variance + 4 m^2); measured from a truth far off in heading, the linearization at
+/// this prior is poor.
+EkfSlamState HeadingOffPrior(double sigma_theta) {
+  std::mt19937_64 rng(7);
+  EkfSlamState prior = UncertainState(rng, SE2(0.0, 0.0, 0.1), 4, sigma_theta);
+  prior.covariance.block<2, 2>(3, 3) += 4.0 * Eigen::Matrix2d::Identity();
+  return prior;
+}
+
 const Eigen::Matrix2d kR = Eigen::Vector2d(0.1 * 0.1, std::pow(M_PI / 180.0, 2)).asDiagonal();
 
 TEST(EkfIteratedUpdate, OneIterationIsTheEkfUpdateBitForBit) {
@@ -90,10 +100,8 @@ TEST(EkfIteratedUpdate, OneIterationIsTheEkfUpdateBitForBit) {
 
 TEST(EkfIteratedUpdate, ConvergesToThePosteriorMaximumWhereTheEkfStepDoesNot) {
   // Heading sigma 0.35 rad (20 deg) and a truth 0.3 rad off: the linearization at the prior
-  // is poor (Bailey et al. 2006's regime). Landmark 0 is new-ish (large variance).
-  std::mt19937_64 rng(7);
-  EkfSlamState prior = UncertainState(rng, SE2(0.0, 0.0, 0.1), 4, 0.35);
-  prior.covariance.block<2, 2>(3, 3) += 4.0 * Eigen::Matrix2d::Identity();
+  // is poor (Bailey et al. 2006's regime).
+  const EkfSlamState prior = HeadingOffPrior(0.35);
   const std::vector<LandmarkMeasurement> m = Measure(prior, SE2(0.4, 0.3, 0.4), {0.0, 0.0});
   EkfSlamState ekf = prior, iekf = prior;
   ASSERT_TRUE(UpdateState(ekf, LinearizeAt(ekf, m), kR).applied);
@@ -137,9 +145,7 @@ TEST(EkfIteratedUpdate, StepGateIteratesAStepOfManySigmas) {
   // A re-sighting after a drift: heading sigma 0.12 rad, truth 0.6 rad (5 sigma) off. The
   // EKF step is many sigmas long, the gate opens and the result is the fully iterated one
   // (the posterior's maximum), not the EKF's.
-  std::mt19937_64 rng(7);
-  EkfSlamState prior = UncertainState(rng, SE2(0.0, 0.0, 0.1), 4, 0.12);
-  prior.covariance.block<2, 2>(3, 3) += 4.0 * Eigen::Matrix2d::Identity();
+  const EkfSlamState prior = HeadingOffPrior(0.12);
   const std::vector<LandmarkMeasurement> m = Measure(prior, SE2(0.4, 0.3, 0.7), {0.0, 0.0});
   const double chi2 = EkfStepChi2(prior, m);
   ASSERT_GT(chi2, 11.34);
