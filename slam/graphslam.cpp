@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <iterator>
 
+#include "core/chi_square.hpp"
+#include "core/error.hpp"
 #include "core/odometry_model.hpp"
 #include "slam/growth_replay.hpp"
 #include "slam/keyframe_decimation.hpp"
@@ -31,6 +33,13 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
          "graph's growth is replayed with solves every replay_every_keyframes / 2, x 1 and x 2 keyframes, three more "
          "guesses (0 = never)",
          AtLeast(0));
+  b.Bind("replay_when_guesses_disagree", c.replay_when_guesses_disagree, "-",
+         "also replay the graph's growth where two guesses of the end solve stopped in different minima (a fold can "
+         "fit its noise model)");
+  b.Bind("frontend_jump_prob", c.frontend_jump_prob, "-",
+         "a graph solved as it grows (periodic solves, replays) composes new keyframes with the front end's motion, "
+         "except where it is farther from the odometry than the chi2_3 quantile of this probability (a jump of the "
+         "filter): the odometry's motion there (0 = never)");
   b.Bind("replay_every_keyframes", c.replay_every_keyframes, "keyframes",
          "the middle interval of the replays (past periodic_max_keyframes each solve is of a decimated graph and the "
          "interval grows with its stride)",
@@ -54,10 +63,14 @@ void BindParams(GraphSlamConfig& c, ParamBinder& b) {
   BindParams(c.frontend, b);  // the EKF front end's association settings, same names
 }
 
-GraphSlam::GraphSlam(const GraphSlamConfig& config) : config_(config), frontend_(config.frontend) {}
+GraphSlam::GraphSlam(const GraphSlamConfig& config) : config_(config), frontend_(config.frontend) {
+  if (!(config.frontend_jump_prob >= 0 && config.frontend_jump_prob < 1))
+    throw InputError("--set algo.graphslam.frontend_jump_prob", 0, "must lie in [0, 1)", "e.g. 0.99, or 0 to always compose the front end's motion");
+}
 
 void GraphSlam::Start(const StreamHeader& header) {
   frontend_.Start(header);
+  jump_gate_chi2_ = config_.frontend_jump_prob > 0 ? ChiSquareQuantile(config_.frontend_jump_prob, 3.0) : 0.0;
   alpha_ = header.sensors.odometry ? header.sensors.odometry->alpha : std::array<double, 4>{};
   const LandmarkSensorConfig sensor = header.sensors.landmarks.value_or(LandmarkSensorConfig{});
   known_ids_ = config_.frontend.association == EkfAssociation::kKnown ||
@@ -115,10 +128,12 @@ void GraphSlam::AddKeyframe(double t_s) {
   const int from = static_cast<int>(graph_.poses.size()) - 1;
   graph_.odometry.push_back({from, T_keyframe_robot_, covariance_since_keyframe_});
   // Initial guess: the front end's filtered pose; when solving periodically, the last
-  // keyframe's (possibly solved) pose composed with the front end's motion since.
+  // keyframe's (possibly solved) pose composed with the front end's motion since (the
+  // odometry's where the front end jumped: ComposedMotion, slam/growth_replay.hpp).
   frontend_poses_.push_back(frontend_.state().Pose());
   graph_.poses.push_back(config_.solve_every_keyframes > 0
-                             ? ComposedWithFrontEndMotion(graph_.poses[from], frontend_poses_[from], frontend_poses_.back())
+                             ? ComposedMotion(graph_.poses[from], frontend_poses_[from], frontend_poses_.back(),
+                                              graph_.odometry.back(), jump_gate_chi2_)
                              : frontend_poses_.back());
   keyframe_t_s_.push_back(t_s);
   if (!samples_.empty() && samples_.back().t_s == t_s)  // this odometry event is the keyframe itself

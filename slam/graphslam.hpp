@@ -50,7 +50,16 @@ struct GraphSlamConfig {
   /// with known and hidden ids, `landmarks` and `forest` seeds 0..9) stayed at or below 0.97,
   /// the four in a fold had 2.1-10.8 (slam/README_landmark_slam.md).
   double replay_chi2_per_residual = 1.5;
+  /// ... and also where two of the end solve's guesses (filtered, re-localized, incremental)
+  /// stopped in different minima (FitsBetter): a fold can fit its noise model (held-out park
+  /// lm7_5, known ids: chi2 per residual 0.13 in a fold, 0.04 in the replay's minimum).
+  bool replay_when_guesses_disagree = true;
   int replay_every_keyframes = 100;  ///< [keyframes] the middle interval of the replays
+  /// A graph solved as it grows (periodic solves, replays) composes each new keyframe onto
+  /// the last with the front end's motion, except where that motion is a jump of the filter:
+  /// farther from the odometry factor than its chi2_3 quantile of this probability (0 = never;
+  /// slam/growth_replay.hpp, ComposedMotion).
+  double frontend_jump_prob = 0.99;
   int max_iterations = LandmarkGraphOptions{}.max_iterations;  ///< [-] Ceres iterations per solve
   bool compute_covariance = true;   ///< marginal covariances of poses and landmarks (slam/sparse_marginals.hpp)
   double huber_scale = 0.0;         ///< [sigma] Huber loss on range-bearing residuals (0 = none)
@@ -60,10 +69,7 @@ struct GraphSlamConfig {
   /// Association and tentative-landmark settings (same names as ekf-slam). The smoother
   /// revises the front end's association itself (smoother_merges): the front end's place
   /// recognition (constellation_merges), made for a filter that cannot, is off by default.
-  /// So is the relinearized update (relinearize_step_prob): the end solve relinearizes
-  /// anyway, and a changed front-end path moves which of its guesses folds (held-out park
-  /// lm3_9, known ids: 1.33 -> 84.1 m; slam/README_landmark_slam.md).
-  EkfSlamConfig frontend{.constellation_merges = false, .relinearize_step_prob = 0.0};
+  EkfSlamConfig frontend{.constellation_merges = false};
 };
 void BindParams(GraphSlamConfig& c, ParamBinder& b);
 
@@ -146,6 +152,7 @@ class GraphSlam : public SlamModule {
   double travel_since_keyframe_m_ = 0.0;
   int skipped_scans_ = 0;
   int last_periodic_solve_ = 0;      ///< keyframe of the last solve during the run
+  double jump_gate_chi2_ = 0.0;      ///< chi2_3(frontend_jump_prob), 0 = off (Start)
   Estimate estimate_;
 };
 

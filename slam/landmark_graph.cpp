@@ -13,6 +13,10 @@
 
 namespace slambox {
 
+Eigen::Matrix3d FactorCovariance(const OdometryConstraint& odometry) {
+  return odometry.covariance + Eigen::Vector3d(1e-8, 1e-8, 1e-8).asDiagonal().toDenseMatrix();
+}
+
 namespace {
 
 struct RangeBearingFactor {
@@ -81,10 +85,8 @@ bool SolveOnce(LandmarkGraph& g, const LandmarkGraphOptions& options, std::vecto
   PoseManifold pose_manifold;
   for (size_t i = 0; i < g.poses.size(); ++i) problem.AddParameterBlock(&x[3 * i], 3, &pose_manifold);
   problem.SetParameterBlockConstant(&x[0]);
-  // A floor on the odometry covariance keeps a standing-still segment invertible.
-  const Eigen::Matrix3d floor = Eigen::Vector3d(1e-8, 1e-8, 1e-8).asDiagonal();
   for (const auto& o : g.odometry) {
-    problem.AddResidualBlock(new PoseGraphEdgeCost(o.T_from_to, SqrtInformationOf(o.covariance + floor)), nullptr,
+    problem.AddResidualBlock(new PoseGraphEdgeCost(o.T_from_to, SqrtInformationOf(FactorCovariance(o))), nullptr,
                              &x.at(3 * o.from), &x.at(3 * (o.from + 1)));
   }
   const Eigen::Matrix2d info_z = g.observation_covariance.inverse();

@@ -27,6 +27,10 @@ struct OdometryConstraint {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< over (dx [m], dy [m], dtheta [rad])
 };
 
+/// The covariance an odometry factor is weighed with: the constraint's, floored (1e-8 on the
+/// diagonal) so that a standing-still segment stays invertible.
+Eigen::Matrix3d FactorCovariance(const OdometryConstraint& odometry);
+
 struct RangeBearingConstraint {
   int keyframe = 0;
   int landmark = 0;  ///< key into LandmarkGraph::landmarks

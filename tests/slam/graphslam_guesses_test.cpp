@@ -1,9 +1,11 @@
 // GraphSLAM's end solve from the best of its guesses (slam/graphslam_guesses.cpp): the margin
 // a guess must beat, the lowest chi2 kept among the filtered, re-localized, periodically
 // solved and replayed guesses, periodic solves past the keyframe cap, and replays only where
-// the fit is worse than the noise model (small synthetic landmark streams, fixed seeds).
+// the fit is worse than the noise model or the guesses disagree (small synthetic landmark
+// streams, fixed seeds).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -110,13 +112,18 @@ TEST(GraphSlam, PeriodicSolvesPastTheCapSolveADecimatedGraphLessOften) {
 }
 
 TEST(GraphSlam, TheGrowthIsReplayedOnlyWhereTheBestGuessFitsWorseThanTheNoiseModel) {
-  // replay_chi2_per_residual: this run fits its noise model (chi2 per residual below 1), so
-  // by default nothing is replayed; with the threshold below its chi2 per residual the three
-  // replays are solved too and the lowest chi2 of all five guesses is kept.
+  // replay_chi2_per_residual: this run fits its noise model (chi2 per residual below 1) and
+  // its two guesses end in one minimum, so by default nothing is replayed; with the threshold
+  // below its chi2 per residual the three replays are solved too and the lowest chi2 of all
+  // five guesses is kept.
   const Stream stream = MakeSyntheticStream(LandmarkOptions(7, 2, true), LandmarkWorld());
   const Estimate plain = RunGraphSlam(stream, GraphSlamConfig{});
   const double per_residual = plain.diagnostics.at("chi2_per_residual").back().second;
   EXPECT_LT(per_residual, GraphSlamConfig{}.replay_chi2_per_residual);
+  const double filtered = plain.diagnostics.at("end_guess_chi2_filtered").back().second;
+  const double relocalized = plain.diagnostics.at("end_guess_chi2_relocalized").back().second;
+  EXPECT_FALSE(FitsBetter(std::min(filtered, relocalized), std::max(filtered, relocalized)));
+  EXPECT_EQ(plain.diagnostics.at("end_guesses_disagree").back().second, 0.0);
   for (const char* name : {"replayed_half", "replayed", "replayed_double"})
     EXPECT_FALSE(plain.diagnostics.count(std::string("end_guess_chi2_") + name)) << name;
   GraphSlamConfig replaying;

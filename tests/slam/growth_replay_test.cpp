@@ -79,10 +79,55 @@ TEST(GrowthReplay, PastTheCapTheSolvedKeyframesAreExactAndTheLaterOnesFollowTheF
   }
 }
 
+TEST(ComposedMotion, TheFrontEndsMotionUnlessItIsAJumpAwayFromTheOdometry) {
+  const SE2 solved(1.0, 2.0, 0.3), fe_prev(5.0, -1.0, 2.0);
+  const OdometryConstraint odo{0, SE2(0.5, 0.02, 0.05), Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal()};  // sigma 1 cm, 0.01 rad
+  const double gate = 11.34;  // chi2_3(0.99)
+  auto composed = [&](const SE2& motion, double g) { return ComposedMotion(solved, fe_prev, fe_prev * motion, odo, g); };
+  auto near = [](const SE2& a, const SE2& b) {
+    return (a.translation() - b.translation()).norm() < 1e-12 && std::abs(NormalizeAngle(a.theta - b.theta)) < 1e-12;
+  };
+  // 2 sigma off in x and in heading: squared distance 8, within the gate: the front end's motion.
+  const SE2 corrected(0.52, 0.02, 0.07);
+  EXPECT_TRUE(near(composed(corrected, gate), solved * corrected));
+  // 3 sigma in x and 2 in heading: 13 > 11.34, a jump: the odometry's motion.
+  const SE2 jumped(0.53, 0.02, 0.07);
+  EXPECT_TRUE(near(composed(jumped, gate), solved * odo.T_from_to));
+  EXPECT_TRUE(near(composed(jumped, 0.0), solved * jumped));  // gate 0: never
+  // The heading difference is wrapped: odometry at +pi - 0.005, the front end at -pi + 0.005 (1 sigma apart).
+  OdometryConstraint turning = odo;
+  turning.T_from_to = SE2(0.5, 0.02, M_PI - 0.005);
+  const SE2 wrapped(0.5, 0.02, -M_PI + 0.005);
+  EXPECT_TRUE(near(ComposedMotion(solved, fe_prev, fe_prev * wrapped, turning, gate), solved * wrapped));
+  // At rest (zero covariance) the floored covariance still weighs: a 1 mm correction is a jump.
+  const OdometryConstraint rest{0, SE2(), Eigen::Matrix3d::Zero()};
+  EXPECT_TRUE(near(ComposedMotion(solved, fe_prev, fe_prev * SE2(0.001, 0.0, 0.0), rest, gate), solved));
+}
+
+TEST(GrowthReplay, AJumpOfTheFrontEndIsNotComposed) {
+  // K 20 on 40 keyframes: one solve at 20, keyframes 21..39 composed after it; the front end
+  // jumps back by 0.25 rad (and 7.5 cm) between keyframes 25 and 26.
+  const Loop l = MakeLoop(40);
+  GrowthReplaySettings settings{.solve_every_keyframes = 20, .max_keyframes = 0, .solver = {}};
+  const LandmarkGraph plain = ReplayGrowth(l.graph, l.frontend, settings);
+  settings.jump_gate_chi2 = 11.34;
+  const LandmarkGraph gated = ReplayGrowth(l.graph, l.frontend, settings);
+  const SE2 jump = plain.poses[25] * (l.frontend[25].inverse() * l.frontend[26]);
+  EXPECT_LT((plain.poses[26].vector() - jump.vector()).norm(), 1e-12);
+  const SE2 odometry = gated.poses[25] * l.graph.odometry[25].T_from_to;
+  EXPECT_LT((gated.poses[26].vector() - odometry.vector()).norm(), 1e-12);
+  // After the jump the front end moves exactly: the gated replay ends at the truth's heading
+  // to within the drift it composed before the jump; the plain one 0.25 rad off that.
+  EXPECT_NEAR(NormalizeAngle(plain.poses[39].theta - gated.poses[39].theta), -0.25, 0.06);
+}
+
 TEST(GrowthReplay, RejectsMismatchedFrontEndPosesAndAZeroInterval) {
   const Loop l = MakeLoop(12);
   std::vector<SE2> short_frontend(l.frontend.begin(), l.frontend.end() - 1);
   EXPECT_THROW(ReplayGrowth(l.graph, short_frontend, {}), std::invalid_argument);
+  LandmarkGraph no_odometry = l.graph;
+  no_odometry.odometry.pop_back();
+  EXPECT_THROW(ReplayGrowth(no_odometry, l.frontend, {}), std::invalid_argument);
   EXPECT_THROW(ReplayGrowth(l.graph, l.frontend, {.solve_every_keyframes = 0, .max_keyframes = 0, .solver = {}}), std::invalid_argument);
   EXPECT_TRUE(ReplayGrowth(LandmarkGraph{}, {}, {}).poses.empty());
 }
