@@ -1,7 +1,7 @@
 // ekf-slam and graphslam on a sparse park where one update must carry a correction of many
-// sigmas: the held-out random park lm20_10 (scripts/random_scenarios.py, batch 20; 12 posts in 110 x 58 m,
-// a 90 deg detector with a precise range and a 3 deg bearing, known ids, a figure eight driven
-// three times). Seed 0 re-sights a post at 252 s after a long drift: linearized at the prior,
+// sigmas: the held-out random park lm20_10 (scripts/random_scenarios.py, batch 20; 12 posts in
+// 110 x 58 m, a 90 deg detector with a precise range and a 3 deg bearing, known ids, a figure
+// eight driven three times). Seed 0 re-sights a post at 252 s after a long drift: linearized at the prior,
 // that update turned the heading from -14 to -128 deg off and the filter never recovered.
 // With the relinearized update (relinearize_step_prob, slam/ekf_slam_filter.hpp) it holds.
 // Measured at commit time (ATE RMSE): seed 0 4.774 m, seed 2 5.406 m (relinearize_step_prob=0:

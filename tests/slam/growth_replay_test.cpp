@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <utility>
 
 #include "slam/keyframe_decimation.hpp"
 #include "slam/range_bearing.hpp"
@@ -128,6 +129,9 @@ TEST(GrowthReplay, RejectsMismatchedFrontEndPosesAndAZeroInterval) {
   LandmarkGraph no_odometry = l.graph;
   no_odometry.odometry.pop_back();
   EXPECT_THROW(ReplayGrowth(no_odometry, l.frontend, {}), std::invalid_argument);
+  LandmarkGraph out_of_order = l.graph;
+  std::swap(out_of_order.odometry[3], out_of_order.odometry[4]);
+  EXPECT_THROW(ReplayGrowth(out_of_order, l.frontend, {}), std::invalid_argument);
   EXPECT_THROW(ReplayGrowth(l.graph, l.frontend, {.solve_every_keyframes = 0, .max_keyframes = 0, .solver = {}}), std::invalid_argument);
   EXPECT_TRUE(ReplayGrowth(LandmarkGraph{}, {}, {}).poses.empty());
 }
